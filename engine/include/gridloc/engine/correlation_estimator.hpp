@@ -1,0 +1,52 @@
+#pragma once
+/// The correlation estimator (seed 001): oriented sonar local grids matched against a
+/// contour-thinned global grid by a multiresolution translation x rotation search.
+#include <vector>
+
+#include "gridloc/engine/correlation_search.hpp"
+#include "gridloc/engine/estimator.hpp"
+#include "gridloc/grids/evidence.hpp"
+#include "gridloc/sensors/sonar_model.hpp"
+#include "gridloc/sensors/sonar_ring.hpp"
+
+namespace gridloc {
+
+enum class SearchStrategy { Exhaustive, Multires };
+
+struct CorrelationOptions {
+  LocalModel local = LocalModel::Oriented;   ///< oriented (seed 001 §3) or turned (baseline)
+  GlobalModel global = GlobalModel::Thinned; ///< thinned (seed 001 §5) or raw (baseline)
+  SearchStrategy strategy = SearchStrategy::Multires;
+  double resolution = 0.1;  ///< finest grid cell = translation step (m)
+  int levels = 3;           ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
+  int keep = 8;             ///< poses kept per level for the next finer one
+  double distinct_xy = 0.3;  ///< poses farther apart than this (m) ...
+  double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
+};
+
+class CorrelationEstimator final : public Estimator {
+ public:
+  /// Precomputes the global grid of every level; throws gridloc::Error for bad options or ring.
+  CorrelationEstimator(OccupancyMap map, SonarRing ring, CorrelationOptions options = {});
+
+  /// window.step_xy must equal options().resolution (the translation lattice is the grid).
+  Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
+  std::string name() const override { return "correlation"; }
+
+  const CorrelationOptions& options() const { return options_; }
+  const OccupancyMap& map() const { return map_; }
+  const SonarRing& ring() const { return ring_; }
+  /// The padded global grid of level l (0 = finest).
+  const PaddedGrid& level(int l) const { return levels_.at(static_cast<std::size_t>(l)); }
+
+ private:
+  OccupancyMap map_;
+  SonarRing ring_;
+  CorrelationOptions options_;
+  std::vector<PaddedGrid> levels_;
+};
+
+/// Checks a window; throws gridloc::Error naming the field.
+void validate(const SearchWindow& window);
+
+}  // namespace gridloc

@@ -1,0 +1,24 @@
+#pragma once
+/// The interface every pose estimator implements, so callers and the evaluation can swap them.
+#include <string>
+#include <vector>
+
+#include "gridloc/engine/estimate.hpp"
+
+namespace gridloc {
+
+/// One observation from the robot standing still: a range per sonar of the ring (m), in
+/// ring order; a sonar's max_range means no echo.
+struct Observation {
+  std::vector<double> ranges;
+};
+
+class Estimator {
+ public:
+  virtual ~Estimator() = default;
+  /// Best pose for `observation` inside `window`; throws gridloc::Error for bad input.
+  virtual Estimate estimate(const Observation& observation, const SearchWindow& window) const = 0;
+  virtual std::string name() const = 0;
+};
+
+}  // namespace gridloc

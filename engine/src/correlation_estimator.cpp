@@ -1,0 +1,144 @@
+#include "gridloc/engine/correlation_estimator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+double level_resolution(double finest, int l) { return finest * static_cast<double>(1 << l); }
+
+/// Distinct local maxima of the scored poses: best first, each farther than the distinct
+/// radius (position or heading) from every one chosen before.
+std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
+                                        double step_theta, const CorrelationOptions& o,
+                                        std::size_t max_count) {
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
+  std::vector<LatticePose> peaks;
+  for (const auto& c : scored) {
+    const bool distinct = std::all_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
+      const double d = res * std::hypot(c.ix - p.ix, c.iy - p.iy);
+      return d > o.distinct_xy || std::abs(c.it - p.it) * step_theta > o.distinct_theta;
+    });
+    if (distinct) peaks.push_back(c);
+    if (peaks.size() == max_count) break;
+  }
+  return peaks;
+}
+
+}  // namespace
+
+void validate(const SearchWindow& w) {
+  auto bad = [](const std::string& field, double v, const std::string& rule) {
+    std::ostringstream m;
+    m << "search window: " << field << " = " << v << " " << rule;
+    throw Error(m.str());
+  };
+  if (!std::isfinite(w.center.x) || !std::isfinite(w.center.y) || !std::isfinite(w.center.theta)) {
+    throw Error("search window: the prior pose must be finite");
+  }
+  if (!(w.half_xy >= 0.0) || !std::isfinite(w.half_xy)) bad("half_xy", w.half_xy, "must be >= 0");
+  if (!(w.half_theta >= 0.0) || !(w.half_theta <= std::numbers::pi)) {
+    bad("half_theta", w.half_theta, "must lie in [0, pi]");
+  }
+  if (!(w.step_xy > 0.0) || !std::isfinite(w.step_xy)) bad("step_xy", w.step_xy, "must be > 0");
+  if (!(w.step_theta > 0.0) || !std::isfinite(w.step_theta)) {
+    bad("step_theta", w.step_theta, "must be > 0");
+  }
+}
+
+CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
+                                           CorrelationOptions options)
+    : map_(std::move(map)), ring_(std::move(ring)), options_(options) {
+  validate(ring_);
+  if (!(options_.resolution > 0.0) || !std::isfinite(options_.resolution)) {
+    throw Error("correlation options: resolution must be > 0, got " +
+                std::to_string(options_.resolution));
+  }
+  if (options_.levels < 1 || options_.levels > 8) {
+    throw Error("correlation options: levels must be in [1, 8], got " +
+                std::to_string(options_.levels));
+  }
+  if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
+  if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
+  for (int l = 0; l < options_.levels; ++l) {
+    const double res = level_resolution(options_.resolution, l);
+    const int pad = static_cast<int>(std::ceil(ring_.reach() / res)) + 3;
+    levels_.push_back(pad_grid(make_global_grid(map_, res, options_.global), pad));
+  }
+}
+
+Estimate CorrelationEstimator::estimate(const Observation& observation,
+                                        const SearchWindow& window) const {
+  const auto start = std::chrono::steady_clock::now();
+  validate_readings(ring_, observation.ranges);
+  validate(window);
+  const double res = options_.resolution;
+  if (std::abs(window.step_xy - res) > 1e-9) {
+    std::ostringstream m;
+    m << "search window: step_xy = " << window.step_xy << " must equal the estimator's grid "
+      << "resolution " << res << " (the translation lattice is the grid)";
+    throw Error(m.str());
+  }
+
+  const PaddedGrid& finest = levels_.front();
+  const Pose2 prior = map_.geometry.to_grid_frame(window.center);
+  const Cell c = {static_cast<int>(std::floor(prior.x / res)),
+                  static_cast<int>(std::floor(prior.y / res))};
+  if (c.ix < 0 || c.iy < 0 || c.ix >= finest.width || c.iy >= finest.height) {
+    std::ostringstream m;
+    m << "prior (" << window.center.x << ", " << window.center.y << ") lies outside the map";
+    throw Error(m.str());
+  }
+  const int n = static_cast<int>(std::lround(window.half_xy / res));
+  const int nt = static_cast<int>(std::lround(window.half_theta / window.step_theta));
+  Lattice lattice;
+  lattice.x0 = std::max(0, c.ix - n);
+  lattice.x1 = std::min(finest.width - 1, c.ix + n);
+  lattice.y0 = std::max(0, c.iy - n);
+  lattice.y1 = std::min(finest.height - 1, c.iy + n);
+  lattice.headings = 2 * nt + 1;
+  lattice.theta = [&](int it) { return prior.theta + (it - nt) * window.step_theta; };
+
+  std::vector<SearchLevel> levels;
+  const int level_count = options_.strategy == SearchStrategy::Exhaustive ? 1 : options_.levels;
+  for (int l = 0; l < level_count; ++l) {
+    const double level_res = level_resolution(res, l);
+    levels.push_back({&levels_[static_cast<std::size_t>(l)], [&, level_res](int it) {
+                        return rasterize(ring_, observation.ranges, lattice.theta(it), level_res,
+                                         options_.local);
+                      }});
+  }
+  const SearchResult r = options_.strategy == SearchStrategy::Exhaustive
+                             ? search_exhaustive(lattice, levels.front())
+                             : search_multires(lattice, levels, options_.keep);
+
+  auto to_world = [&](const LatticePose& p) {
+    return map_.geometry.to_world_frame({(p.ix + 0.5) * res, (p.iy + 0.5) * res, lattice.theta(p.it)});
+  };
+
+  Estimate e;
+  e.pose = to_world(r.best);
+  e.score = r.best.score;
+  const double mass = rasterize(ring_, observation.ranges, lattice.theta(r.best.it), res,
+                                options_.local)
+                          .mass();
+  e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
+  const auto peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
+  e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
+  e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
+  for (const auto& p : peaks) e.alternatives.push_back({to_world(p), p.score});
+  e.stats.poses_scored = r.poses_scored;
+  e.stats.cells_scored = r.cells_scored;
+  e.stats.levels = level_count;
+  e.stats.elapsed_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return e;
+}
+
+}  // namespace gridloc

@@ -1,0 +1,117 @@
+// gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "gridloc/engine/evaluation.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "options.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+struct EvalArgs {
+  std::string maps, ring, strategy = "multires", noise = "realistic";
+  int trials = 100;
+  std::uint64_t seed = 1;
+  bool json = false;
+  bool quiet = false;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+void run(const EvalArgs& a) {
+  EvalOptions o;
+  o.trials = a.trials;
+  o.seed = a.seed;
+  o.search.strategy = parse_strategy(a.strategy);
+  if (a.noise == "none") {
+    o.noise = SonarSimOptions{};
+  } else if (a.noise != "realistic") {
+    throw Error("--noise must be realistic or none, not '" + a.noise + "'");
+  }
+  std::vector<EvalMap> maps;
+  for (const auto& path : split(a.maps)) {
+    // A bare name means a bundled map.
+    const std::string file = path.find('/') == std::string::npos && path.find(".yaml") == std::string::npos
+                                 ? data_dir() + "/" + path + ".yaml"
+                                 : path;
+    maps.push_back({file, load_ros_map(file)});
+  }
+  if (maps.empty()) throw Error("--maps names no map");
+  const SonarRing ring = load_sonar_ring(a.ring);
+
+  const auto report = run_evaluation(maps, ring, o, [&](int done, int total) {
+    if (a.quiet) return;
+    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, 4 configurations)", done,
+                 total, maps.size(), a.trials);
+    if (done == total) std::fprintf(stderr, "\n");
+  });
+
+  if (a.json) {
+    nlohmann::json configs = nlohmann::json::array();
+    for (const auto& c : report.configurations) {
+      configs.push_back({{"local", to_string(c.configuration.local)},
+                         {"global", to_string(c.configuration.global)},
+                         {"success_rate", c.success_rate},
+                         {"successes", c.successes},
+                         {"mean_position_error_m", c.mean_position_error_m},
+                         {"mean_heading_error_deg", c.mean_heading_error_deg},
+                         {"median_ms", c.median_ms}});
+    }
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& m : maps) names.push_back(m.name);
+    std::cout << nlohmann::json{{"trials", report.trials},
+                                {"maps", names},
+                                {"seed", a.seed},
+                                {"strategy", a.strategy},
+                                {"noise", a.noise},
+                                {"configurations", configs}}
+                     .dump(2)
+              << "\n";
+    return;
+  }
+  std::printf("seed 001 protocol: %d trials (%zu maps), seed %llu, %s search, %s noise\n",
+              report.trials, maps.size(), static_cast<unsigned long long>(a.seed),
+              a.strategy.c_str(), a.noise.c_str());
+  std::printf("%-9s %-8s %9s %14s %16s %10s\n", "local", "global", "success", "mean pos err",
+              "mean head err", "median");
+  for (const auto& c : report.configurations) {
+    std::printf("%-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms\n",
+                to_string(c.configuration.local).c_str(), to_string(c.configuration.global).c_str(),
+                100.0 * c.success_rate, c.mean_position_error_m, c.mean_heading_error_deg,
+                c.median_ms);
+  }
+}
+
+}  // namespace
+
+void add_eval(CLI::App& app) {
+  auto a = std::make_shared<EvalArgs>();
+  a->maps = "room_rect,room_l,room_furnished";
+  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
+  cmd->add_option("--maps", a->maps, "comma-separated bundled map names or YAML paths")
+      ->capture_default_str();
+  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
+  cmd->add_option("--strategy", a->strategy, "multires | exhaustive")->capture_default_str();
+  cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
+  cmd->add_flag("--json", a->json, "print JSON instead of the table");
+  cmd->add_flag("--quiet", a->quiet, "no progress line");
+  cmd->callback([a] { run(*a); });
+}
+
+}  // namespace gridloc::cli

@@ -1,0 +1,18 @@
+#pragma once
+// The gridloc subcommands; each registers its options and its action on the app.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "gridloc/engine/estimate.hpp"
+
+namespace gridloc::cli {
+
+void add_localize(CLI::App& app);
+void add_simulate(CLI::App& app);
+void add_demo(CLI::App& app);
+void add_eval(CLI::App& app);
+
+nlohmann::json to_json(const Pose2& p);
+nlohmann::json to_json(const Estimate& e);
+
+}  // namespace gridloc::cli

@@ -1,0 +1,26 @@
+#include "commands.hpp"
+#include "gridloc/grids/geometry.hpp"
+
+namespace gridloc::cli {
+
+nlohmann::json to_json(const Pose2& p) { return {{"x", p.x}, {"y", p.y}, {"theta", p.theta}}; }
+
+nlohmann::json to_json(const Estimate& e) {
+  nlohmann::json alternatives = nlohmann::json::array();
+  for (const auto& h : e.alternatives) {
+    alternatives.push_back({{"pose", to_json(h.pose)}, {"score", h.score}});
+  }
+  return {{"pose", to_json(e.pose)},
+          {"theta_deg", rad2deg(e.pose.theta)},
+          {"score", e.score},
+          {"normalized_score", e.normalized_score},
+          {"second_score", e.second_score},
+          {"confidence", e.confidence},
+          {"alternatives", alternatives},
+          {"stats",
+           {{"poses_scored", e.stats.poses_scored},
+            {"cells_scored", e.stats.cells_scored},
+            {"levels", e.stats.levels}}}};
+}
+
+}  // namespace gridloc::cli

@@ -1,0 +1,57 @@
+#include "options.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc::cli {
+
+Pose2 parse_pose(const std::string& text, const std::string& what) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw Error(what + ": '" + text + "' is not x,y,theta (numbers)");
+    }
+  }
+  if (v.size() != 3) throw Error(what + ": '" + text + "' must be three numbers x,y,theta");
+  for (double d : v) {
+    if (!std::isfinite(d)) throw Error(what + ": '" + text + "' must be finite");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+LocalModel parse_local(const std::string& s) {
+  if (s == "oriented") return LocalModel::Oriented;
+  if (s == "turned") return LocalModel::Turned;
+  throw Error("--local must be oriented or turned, not '" + s + "'");
+}
+
+GlobalModel parse_global(const std::string& s) {
+  if (s == "thinned") return GlobalModel::Thinned;
+  if (s == "raw") return GlobalModel::Raw;
+  throw Error("--global must be thinned or raw, not '" + s + "'");
+}
+
+SearchStrategy parse_strategy(const std::string& s) {
+  if (s == "multires") return SearchStrategy::Multires;
+  if (s == "exhaustive") return SearchStrategy::Exhaustive;
+  throw Error("--strategy must be multires or exhaustive, not '" + s + "'");
+}
+
+std::string data_dir() {
+  if (const char* env = std::getenv("GRIDLOC_DATA_DIR")) return env;
+  if (std::filesystem::exists(GRIDLOC_SOURCE_MAPS_DIR)) return GRIDLOC_SOURCE_MAPS_DIR;
+  return GRIDLOC_INSTALL_MAPS_DIR;
+}
+
+}  // namespace gridloc::cli

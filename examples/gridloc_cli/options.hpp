@@ -1,0 +1,20 @@
+#pragma once
+// Parsing helpers shared by the gridloc subcommands.
+#include <string>
+
+#include "gridloc/engine/correlation_estimator.hpp"
+
+namespace gridloc::cli {
+
+/// Parses "x,y,theta" (metres, metres, radians); throws gridloc::Error naming `what`.
+Pose2 parse_pose(const std::string& text, const std::string& what);
+
+LocalModel parse_local(const std::string& s);
+GlobalModel parse_global(const std::string& s);
+SearchStrategy parse_strategy(const std::string& s);
+
+/// Folder of the bundled maps: $GRIDLOC_DATA_DIR, else the source tree's maps/, else the
+/// installed share/gridloc/maps.
+std::string data_dir();
+
+}  // namespace gridloc::cli

@@ -1,0 +1,89 @@
+#include "gridloc/grids/evidence.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+
+OccupancyMap resample(const OccupancyMap& map, double resolution) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("grid resolution must be positive, got " + std::to_string(resolution));
+  }
+  const GridGeometry& src = map.geometry;
+  GridGeometry g = src;
+  g.resolution = resolution;
+  // A tolerance keeps an exact ratio (e.g. 0.05 -> 0.10) from gaining a spurious column.
+  g.width = std::max(1, static_cast<int>(std::ceil(src.width * src.resolution / resolution - 1e-9)));
+  g.height =
+      std::max(1, static_cast<int>(std::ceil(src.height * src.resolution / resolution - 1e-9)));
+
+  if (resolution < src.resolution) {
+    OccupancyMap out(g, CellState::Unknown);
+    for (int iy = 0; iy < g.height; ++iy) {
+      for (int ix = 0; ix < g.width; ++ix) {
+        const Eigen::Vector2d c = g.cell_center(ix, iy);
+        const Cell s = src.cell_of(c.x(), c.y());
+        if (src.contains(s.ix, s.iy)) out.at(ix, iy) = map.at(s.ix, s.iy);
+      }
+    }
+    return out;
+  }
+
+  // Per target cell: bit 0 any occupied, bit 1 any free, bit 2 any unknown.
+  Grid<std::uint8_t> flags(g, 0);
+  for (int sy = 0; sy < src.height; ++sy) {
+    const int ty = std::min(g.height - 1, static_cast<int>((sy + 0.5) * src.resolution / resolution));
+    for (int sx = 0; sx < src.width; ++sx) {
+      const int tx =
+          std::min(g.width - 1, static_cast<int>((sx + 0.5) * src.resolution / resolution));
+      const CellState s = map.at(sx, sy);
+      flags.at(tx, ty) |= s == CellState::Occupied ? 1 : s == CellState::Free ? 2 : 4;
+    }
+  }
+  OccupancyMap out(g, CellState::Unknown);
+  for (std::size_t i = 0; i < out.cells.size(); ++i) {
+    const auto f = flags.cells[i];
+    out.cells[i] = (f & 1) ? CellState::Occupied : (f == 2) ? CellState::Free : CellState::Unknown;
+  }
+  return out;
+}
+
+EvidenceGrid make_evidence(const OccupancyMap& map) {
+  EvidenceGrid e(map.geometry, 0.0f);
+  for (std::size_t i = 0; i < map.cells.size(); ++i) {
+    const CellState s = map.cells[i];
+    e.cells[i] = s == CellState::Occupied ? 1.0f : s == CellState::Free ? -1.0f : 0.0f;
+  }
+  return e;
+}
+
+EvidenceGrid make_thinned_evidence(const OccupancyMap& map) {
+  EvidenceGrid e = make_evidence(map);
+  const int w = map.width(), h = map.height();
+  for (int iy = 0; iy < h; ++iy) {
+    for (int ix = 0; ix < w; ++ix) {
+      if (map.at(ix, iy) != CellState::Occupied) continue;
+      bool faces_free = false;
+      for (int dy = -1; dy <= 1 && !faces_free; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = ix + dx, ny = iy + dy;
+          if (map.geometry.contains(nx, ny) && map.at(nx, ny) == CellState::Free) {
+            faces_free = true;
+            break;
+          }
+        }
+      }
+      if (!faces_free) e.at(ix, iy) = 0.0f;
+    }
+  }
+  return e;
+}
+
+EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model) {
+  const OccupancyMap level = resample(map, resolution);
+  return model == GlobalModel::Thinned ? make_thinned_evidence(level) : make_evidence(level);
+}
+
+}  // namespace gridloc

@@ -1,0 +1,181 @@
+#include "gridloc/grids/map_io.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+  throw Error(file + ": " + what);
+}
+
+template <typename T>
+T read_scalar(const YAML::Node& node, const std::string& key, const std::string& file) {
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    fail(file, "key '" + key + "' has a value of the wrong type: '" + YAML::Dump(node) + "'");
+  }
+}
+
+MapMode parse_mode(const std::string& s, const std::string& file) {
+  if (s == "trinary") return MapMode::Trinary;
+  if (s == "scale") return MapMode::Scale;
+  if (s == "raw") return MapMode::Raw;
+  fail(file, "key 'mode' must be trinary, scale or raw, not '" + s + "'");
+}
+
+}  // namespace
+
+MapMetadata load_map_metadata(const std::string& yaml_path) {
+  if (!fs::exists(yaml_path)) fail(yaml_path, "map file not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(yaml_path);
+  } catch (const YAML::Exception& e) {
+    fail(yaml_path, std::string("malformed YAML: ") + e.what());
+  }
+  if (!root.IsMap()) fail(yaml_path, "expected a YAML mapping of map_server keys");
+
+  static const std::set<std::string> known = {"image",         "resolution", "origin",
+                                              "negate",        "mode",       "occupied_thresh",
+                                              "free_thresh"};
+  for (const auto& kv : root) {
+    const auto key = kv.first.as<std::string>();
+    if (!known.count(key)) fail(yaml_path, "unknown key '" + key + "'");
+  }
+  for (const char* required : {"image", "resolution", "origin"}) {
+    if (!root[required]) fail(yaml_path, std::string("missing key '") + required + "'");
+  }
+
+  MapMetadata m;
+  m.image = read_scalar<std::string>(root["image"], "image", yaml_path);
+  m.resolution = read_scalar<double>(root["resolution"], "resolution", yaml_path);
+  if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) {
+    fail(yaml_path, "key 'resolution' must be positive, got " + std::to_string(m.resolution));
+  }
+  const auto origin = root["origin"];
+  if (!origin.IsSequence() || origin.size() != 3) {
+    fail(yaml_path, "key 'origin' must be a list [x, y, yaw]");
+  }
+  m.origin = {read_scalar<double>(origin[0], "origin", yaml_path),
+              read_scalar<double>(origin[1], "origin", yaml_path),
+              read_scalar<double>(origin[2], "origin", yaml_path)};
+  if (!std::isfinite(m.origin.x) || !std::isfinite(m.origin.y) || !std::isfinite(m.origin.theta)) {
+    fail(yaml_path, "key 'origin' must hold finite numbers");
+  }
+  if (root["negate"]) {
+    // map_server accepts 0/1 as well as true/false.
+    const auto s = read_scalar<std::string>(root["negate"], "negate", yaml_path);
+    if (s == "1" || s == "true" || s == "True") {
+      m.negate = true;
+    } else if (s == "0" || s == "false" || s == "False") {
+      m.negate = false;
+    } else {
+      fail(yaml_path, "key 'negate' must be 0, 1, true or false, not '" + s + "'");
+    }
+  }
+  if (root["occupied_thresh"]) {
+    m.occupied_thresh = read_scalar<double>(root["occupied_thresh"], "occupied_thresh", yaml_path);
+  }
+  if (root["free_thresh"]) {
+    m.free_thresh = read_scalar<double>(root["free_thresh"], "free_thresh", yaml_path);
+  }
+  if (!(m.free_thresh >= 0.0 && m.free_thresh < m.occupied_thresh && m.occupied_thresh <= 1.0)) {
+    fail(yaml_path, "thresholds must satisfy 0 <= free_thresh < occupied_thresh <= 1 (got " +
+                        std::to_string(m.free_thresh) + ", " +
+                        std::to_string(m.occupied_thresh) + ")");
+  }
+  if (root["mode"]) m.mode = parse_mode(read_scalar<std::string>(root["mode"], "mode", yaml_path), yaml_path);
+  return m;
+}
+
+OccupancyMap load_ros_map(const std::string& yaml_path) {
+  const MapMetadata meta = load_map_metadata(yaml_path);
+  fs::path image_path = meta.image;
+  if (image_path.is_relative()) image_path = fs::path(yaml_path).parent_path() / image_path;
+  if (!fs::exists(image_path)) {
+    fail(yaml_path, "image file '" + image_path.string() + "' not found");
+  }
+  const cv::Mat img = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
+  if (img.empty()) fail(image_path.string(), "cannot decode the image (expected PGM or PNG)");
+  if (img.depth() != CV_8U) fail(image_path.string(), "only 8-bit images are supported");
+
+  const int channels = img.channels();
+  const bool has_alpha = channels == 2 || channels == 4;
+  // map_server averages the colour channels; alpha only marks unknown (not in trinary mode).
+  const int colour_channels = (meta.mode == MapMode::Trinary || !has_alpha) ? channels : channels - 1;
+
+  GridGeometry g;
+  g.resolution = meta.resolution;
+  g.origin = {meta.origin.x, meta.origin.y};
+  g.yaw = meta.origin.theta;
+  g.width = img.cols;
+  g.height = img.rows;
+  OccupancyMap map(g, CellState::Unknown);
+
+  for (int r = 0; r < img.rows; ++r) {
+    const auto* px = img.ptr<std::uint8_t>(r);
+    const int iy = img.rows - 1 - r;  // image row 0 is the top: flip so iy grows with y
+    for (int c = 0; c < img.cols; ++c) {
+      const std::uint8_t* p = px + c * channels;
+      int sum = 0;
+      for (int k = 0; k < colour_channels; ++k) sum += p[k];
+      double v = static_cast<double>(sum) / colour_channels;
+      if (meta.negate) v = 255.0 - v;
+      CellState s = CellState::Unknown;
+      if (meta.mode == MapMode::Raw) {
+        const double occ = v / 100.0;
+        if (v <= 100.0) {
+          s = occ > meta.occupied_thresh ? CellState::Occupied
+              : occ < meta.free_thresh   ? CellState::Free
+                                         : CellState::Unknown;
+        }
+      } else {
+        const double occ = (255.0 - v) / 255.0;
+        const bool transparent = has_alpha && meta.mode == MapMode::Scale && p[channels - 1] == 0;
+        if (occ > meta.occupied_thresh) {
+          s = CellState::Occupied;
+        } else if (occ < meta.free_thresh) {
+          s = CellState::Free;
+        }
+        if (transparent) s = CellState::Unknown;
+      }
+      map.at(c, iy) = s;
+    }
+  }
+  return map;
+}
+
+void save_ros_map(const OccupancyMap& map, const std::string& yaml_path) {
+  const fs::path yaml(yaml_path);
+  const fs::path pgm = fs::path(yaml).replace_extension(".pgm");
+  cv::Mat img(map.height(), map.width(), CV_8UC1);
+  for (int iy = 0; iy < map.height(); ++iy) {
+    auto* px = img.ptr<std::uint8_t>(map.height() - 1 - iy);
+    for (int ix = 0; ix < map.width(); ++ix) {
+      const CellState s = map.at(ix, iy);
+      px[ix] = s == CellState::Occupied ? 0 : s == CellState::Free ? 254 : 205;
+    }
+  }
+  if (!cv::imwrite(pgm.string(), img)) fail(pgm.string(), "cannot write the image");
+  std::ofstream out(yaml);
+  if (!out) fail(yaml_path, "cannot write the map YAML");
+  out << "image: " << pgm.filename().string() << "\n"
+      << "resolution: " << map.geometry.resolution << "\n"
+      << "origin: [" << map.geometry.origin.x() << ", " << map.geometry.origin.y() << ", "
+      << map.geometry.yaw << "]\n"
+      << "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+}
+
+}  // namespace gridloc

@@ -1,0 +1,35 @@
+#pragma once
+/// The oriented sonar-cone model of seed 001 §3 and its rasterization into a local grid.
+#include <vector>
+
+#include "gridloc/sensors/local_grid.hpp"
+#include "gridloc/sensors/sonar_ring.hpp"
+
+namespace gridloc {
+
+/// How a local grid is made for heading theta: `Oriented` discretizes the model already
+/// rotated by theta (seed 001 eq. 3); `Turned` builds the grid at theta = 0 and moves each
+/// cell to its rotated position (the paper's baseline, which loses and doubles cells).
+enum class LocalModel { Oriented, Turned };
+
+/// Rasterizes the readings of `ring` for a robot heading `theta` (rad) into cells of size
+/// `resolution` (m). Per cone with an echo at range d: the n1 cells of the 8-connected arc
+/// at d get +1/n1 and the n2 cells of the free sector before it get -1/n2; a reading with
+/// no echo (d >= max_range) gives its free sector up to max_range only. The footprint's n
+/// cells get -N/n (N = number of sonars).
+/// Overlap rule: an arc cell of any cone stays occupied (arc values of several cones add,
+/// free values on it are dropped); free values of several cones add; the footprint
+/// overrides everything. Readings must have passed validate_readings().
+SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
+                                   double theta, double resolution);
+
+/// The paper's "turned" grid: rasterize at theta = 0, then move every cell centre by the
+/// rotation theta and round to the nearest cell; a cell hit twice keeps the later value.
+SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double>& ranges,
+                                 double theta, double resolution);
+
+/// Dispatches on `model`.
+SparseLocalGrid rasterize(const SonarRing& ring, const std::vector<double>& ranges, double theta,
+                          double resolution, LocalModel model);
+
+}  // namespace gridloc

@@ -1,0 +1,191 @@
+#include "gridloc/sensors/sonar_model.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+/// Dense scratch canvas centred on the robot's cell; cells are collected sparsely at the end.
+class Canvas {
+ public:
+  Canvas(double reach, double resolution)
+      : res_(resolution),
+        half_(static_cast<int>(std::ceil(reach / resolution)) + 2),
+        side_(2 * half_ + 1),
+        arc_(static_cast<std::size_t>(side_) * side_, 0.0f),
+        free_(arc_.size(), 0.0f),
+        stamp_(arc_.size(), -1) {}
+
+  /// Index of the cell holding robot-centred point (x, y); the robot centre is the centre of
+  /// cell (0, 0), hence the +0.5.
+  int cell_index(double x, double y) const {
+    const int cx = static_cast<int>(std::floor(x / res_ + 0.5));
+    const int cy = static_cast<int>(std::floor(y / res_ + 0.5));
+    return (cy + half_) * side_ + (cx + half_);
+  }
+  int cx(int idx) const { return idx % side_ - half_; }
+  int cy(int idx) const { return idx / side_ - half_; }
+  bool adjacent8(int a, int b) const {
+    return std::abs(cx(a) - cx(b)) <= 1 && std::abs(cy(a) - cy(b)) <= 1;
+  }
+  /// Marks idx for pass `pass`; returns true the first time.
+  bool mark(int idx, int pass) {
+    if (stamp_[idx] == pass) return false;
+    stamp_[idx] = pass;
+    return true;
+  }
+  bool marked(int idx, int pass) const { return stamp_[idx] == pass; }
+  float& arc(int idx) { return arc_[idx]; }
+  float& free(int idx) { return free_[idx]; }
+  double resolution() const { return res_; }
+
+  /// Collects the non-zero cells, sorted by (dy, dx) because the canvas is row-major.
+  /// Overlap rule: arc beats free.
+  SparseLocalGrid collect(double theta) const {
+    SparseLocalGrid g;
+    g.resolution = res_;
+    g.theta = theta;
+    for (int i = 0; i < static_cast<int>(arc_.size()); ++i) {
+      const float v = arc_[i] > 0.0f ? arc_[i] : free_[i];
+      if (v == 0.0f) continue;
+      g.dx.push_back(cx(i));
+      g.dy.push_back(cy(i));
+      g.value.push_back(v);
+    }
+    return g;
+  }
+
+ private:
+  double res_;
+  int half_;
+  int side_;
+  std::vector<float> arc_;
+  std::vector<float> free_;
+  std::vector<int> stamp_;
+};
+
+/// Angular samples across a cone so that neighbouring samples at range rho are at most a
+/// quarter cell apart.
+int angular_samples(double cone, double rho, double res) {
+  return std::max(2, static_cast<int>(std::ceil(cone * rho / (0.25 * res))) + 1);
+}
+
+void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta, int pass_arc,
+              int pass_free) {
+  const double res = canvas.resolution();
+  // seed 001 eq. (3), in this project's axes (x forward): sensor at (r, beta + theta), axis
+  // at epsilon + theta.
+  const double sx = s.radius * std::cos(s.bearing + theta);
+  const double sy = s.radius * std::sin(s.bearing + theta);
+  const double axis = s.heading + theta;
+  const bool echo = d < s.max_range;
+  const double free_limit = echo ? d : s.max_range;
+
+  // Arc: ordered distinct cells along the arc, thinned to an 8-connected chain by dropping
+  // the corner cell of every 4-connected step.
+  std::vector<int> arc;
+  if (echo) {
+    const int m = angular_samples(s.cone, d, res);
+    for (int k = 0; k < m; ++k) {
+      const double a = axis - 0.5 * s.cone + s.cone * k / (m - 1);
+      const int idx = canvas.cell_index(sx + d * std::cos(a), sy + d * std::sin(a));
+      canvas.mark(idx, pass_arc);  // every touched cell is excluded from the free sector
+      if (!arc.empty() && arc.back() == idx) continue;
+      while (arc.size() >= 2 && canvas.adjacent8(idx, arc[arc.size() - 2])) arc.pop_back();
+      arc.push_back(idx);
+    }
+    const float v = 1.0f / static_cast<float>(arc.size());
+    for (int idx : arc) canvas.arc(idx) += v;
+  }
+
+  // Free sector: cells swept by the cone before the arc, sampled every half cell along
+  // and across the cone (directions computed once, thinned out at short range).
+  std::vector<int> free_cells;
+  const double step = 0.5 * res;
+  const int m_max = std::max(2, static_cast<int>(std::ceil(s.cone * free_limit / step)) + 1);
+  std::vector<double> ux(m_max), uy(m_max);
+  for (int k = 0; k < m_max; ++k) {
+    const double a = axis - 0.5 * s.cone + s.cone * k / (m_max - 1);
+    ux[k] = std::cos(a);
+    uy[k] = std::sin(a);
+  }
+  for (double rho = 0.0; rho < free_limit; rho += step) {
+    const int m = std::max(2, static_cast<int>(std::ceil(s.cone * rho / step)) + 1);
+    const int stride = std::max(1, (m_max - 1) / (m - 1));
+    for (int k = 0;; k = std::min(k + stride, m_max - 1)) {
+      const int idx = canvas.cell_index(sx + rho * ux[k], sy + rho * uy[k]);
+      if (!canvas.marked(idx, pass_arc) && canvas.mark(idx, pass_free)) free_cells.push_back(idx);
+      if (k == m_max - 1) break;
+    }
+  }
+  if (!free_cells.empty()) {
+    const float v = -1.0f / static_cast<float>(free_cells.size());
+    for (int idx : free_cells) canvas.free(idx) += v;
+  }
+}
+
+void check_resolution(double resolution) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("local grid resolution must be positive, got " + std::to_string(resolution));
+  }
+}
+
+}  // namespace
+
+SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
+                                   double theta, double resolution) {
+  check_resolution(resolution);
+  Canvas canvas(ring.reach() + resolution, resolution);
+  int pass = 0;
+  for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
+    add_cone(canvas, ring.sonars[i], ranges[i], theta, pass, pass + 1);
+    pass += 2;
+  }
+  // Footprint: its n cells share -N/n, overriding the cones (the robot stands there).
+  if (ring.footprint.polygon.size() >= 3) {
+    const double c = std::cos(theta), s = std::sin(theta);
+    std::vector<int> cells;
+    const int half = static_cast<int>(std::ceil(ring.reach() / resolution));
+    for (int cy = -half; cy <= half; ++cy) {
+      for (int cx = -half; cx <= half; ++cx) {
+        const double wx = cx * resolution, wy = cy * resolution;
+        // Cell centre back into the robot frame.
+        const Eigen::Vector2d p(c * wx + s * wy, -s * wx + c * wy);
+        if (footprint_contains(ring.footprint, p)) cells.push_back(canvas.cell_index(wx, wy));
+      }
+    }
+    const float v = -static_cast<float>(ring.sonars.size()) / static_cast<float>(cells.size());
+    for (int idx : cells) {
+      canvas.arc(idx) = 0.0f;
+      canvas.free(idx) = v;
+    }
+  }
+  return canvas.collect(theta);
+}
+
+SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double>& ranges,
+                                 double theta, double resolution) {
+  const SparseLocalGrid upright = rasterize_oriented(ring, ranges, 0.0, resolution);
+  Canvas canvas(ring.reach() + 2 * resolution, resolution);
+  const double c = std::cos(theta), s = std::sin(theta);
+  // Write into the arc/free layers by sign so that "later value wins" holds per cell.
+  for (std::size_t k = 0; k < upright.size(); ++k) {
+    const double x = upright.dx[k] * resolution, y = upright.dy[k] * resolution;
+    const int idx = canvas.cell_index(c * x - s * y, s * x + c * y);
+    const float v = upright.value[k];
+    canvas.arc(idx) = v > 0.0f ? v : 0.0f;
+    canvas.free(idx) = v < 0.0f ? v : 0.0f;
+  }
+  return canvas.collect(theta);
+}
+
+SparseLocalGrid rasterize(const SonarRing& ring, const std::vector<double>& ranges, double theta,
+                          double resolution, LocalModel model) {
+  return model == LocalModel::Oriented ? rasterize_oriented(ring, ranges, theta, resolution)
+                                       : rasterize_turned(ring, ranges, theta, resolution);
+}
+
+}  // namespace gridloc
