@@ -65,11 +65,12 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.levels));
   }
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
+
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
   for (int l = 0; l < options_.levels; ++l) {
     const double res = level_resolution(options_.resolution, l);
     const int pad = static_cast<int>(std::ceil(ring_.reach() / res)) + 3;
-    levels_.push_back(pad_grid(make_global_grid(map_, res, options_.global), pad));
+    levels_.push_back(pad_grid(make_global_grid(map_, res, options_.global), pad, options_.arc_rule));
   }
 }
 
@@ -103,36 +104,42 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   lattice.y0 = std::max(0, c.iy - n);
   lattice.y1 = std::min(finest.height - 1, c.iy + n);
   lattice.headings = 2 * nt + 1;
-  lattice.theta = [&](int it) { return prior.theta + (it - nt) * window.step_theta; };
+  lattice.theta0 = prior.theta - nt * window.step_theta;
+  lattice.step_theta = window.step_theta;
 
   std::vector<SearchLevel> levels;
   const int level_count = options_.strategy == SearchStrategy::Exhaustive ? 1 : options_.levels;
   for (int l = 0; l < level_count; ++l) {
     const double level_res = level_resolution(res, l);
-    levels.push_back({&levels_[static_cast<std::size_t>(l)], [&, level_res](int it) {
-                        return rasterize(ring_, observation.ranges, lattice.theta(it), level_res,
-                                         options_.local);
+    levels.push_back({&levels_[static_cast<std::size_t>(l)], [&, level_res](double theta, const Eigen::Vector2d& centre) {
+                        return rasterize(ring_, observation.ranges, theta, level_res,
+                                         options_.local, centre, options_.sonar);
                       }});
   }
   const SearchResult r = options_.strategy == SearchStrategy::Exhaustive
                              ? search_exhaustive(lattice, levels.front())
                              : search_multires(lattice, levels, options_.keep);
 
-  auto to_world = [&](const LatticePose& p) {
-    return map_.geometry.to_world_frame({(p.ix + 0.5) * res, (p.iy + 0.5) * res, lattice.theta(p.it)});
+  auto to_world = [&](double ix, double iy, double it) {
+    return map_.geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
   };
 
   Estimate e;
-  e.pose = to_world(r.best);
+  e.lattice_pose = to_world(r.best.ix, r.best.iy, r.best.it);
+  e.pose = e.lattice_pose;
+  if (options_.refine) {
+    const RefinedPose refined = refine(r.best, lattice, levels.front());
+    e.pose = to_world(refined.ix, refined.iy, refined.it);
+  }
   e.score = r.best.score;
   const double mass = rasterize(ring_, observation.ranges, lattice.theta(r.best.it), res,
-                                options_.local)
+                                options_.local, Eigen::Vector2d::Zero(), options_.sonar)
                           .mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
   const auto peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
   e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
-  for (const auto& p : peaks) e.alternatives.push_back({to_world(p), p.score});
+  for (const auto& p : peaks) e.alternatives.push_back({to_world(p.ix, p.iy, p.it), p.score});
   e.stats.poses_scored = r.poses_scored;
   e.stats.cells_scored = r.cells_scored;
   e.stats.levels = level_count;

@@ -1,6 +1,8 @@
 #include "gridloc/engine/correlation_search.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <tuple>
 
@@ -18,13 +20,13 @@ bool better(const LatticePose& a, const LatticePose& b) {
 }
 
 /// Scores `candidates` (sorted by index) on one level, building each heading's grid once.
-void score_all(std::vector<LatticePose>& candidates, const SearchLevel& level,
-               SearchResult& result) {
+void score_all(std::vector<LatticePose>& candidates, const Lattice& lattice,
+               const SearchLevel& level, SearchResult& result) {
   std::optional<int> current;
   PlacedLocalGrid placed;
   for (auto& c : candidates) {
     if (current != c.it) {
-      placed = place(level.make_local(c.it), *level.global);
+      placed = place(level.make_local(lattice.theta(c.it), Eigen::Vector2d::Zero()), *level.global);
       current = c.it;
     }
     c.score = score(*level.global, placed, c.ix, c.iy);
@@ -35,7 +37,7 @@ void score_all(std::vector<LatticePose>& candidates, const SearchLevel& level,
 
 }  // namespace
 
-PaddedGrid pad_grid(const EvidenceGrid& grid, int pad) {
+PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   PaddedGrid p;
   p.pad = pad;
   p.width = grid.width();
@@ -43,31 +45,48 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad) {
   GridGeometry g = grid.geometry;
   g.width += 2 * pad;
   g.height += 2 * pad;
-  g.origin -= Eigen::Vector2d(pad * g.resolution, pad * g.resolution);  // ignoring yaw: unused
   p.grid = EvidenceGrid(g, 0.0f);
   for (int iy = 0; iy < grid.height(); ++iy) {
     std::copy(grid.row(iy), grid.row(iy) + grid.width(), p.grid.row(iy + pad) + pad);
   }
+  p.arc_view = p.grid.cells;
+  if (rule == ArcRule::Neutral) {
+    for (float& v : p.arc_view) v = std::max(v, 0.0f);
+  }
   return p;
 }
 
-double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy) {
-  double s = 0.0;
+double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy,
+                       ArcRule rule) {
+  double positive = 0.0, negative = 0.0;
   for (std::size_t k = 0; k < local.size(); ++k) {
     const int x = cx + local.dx[k], y = cy + local.dy[k];
-    if (global.geometry.contains(x, y)) {
-      s += static_cast<double>(local.value[k] * global.at(x, y));
+    if (!global.geometry.contains(x, y)) continue;
+    const float v = local.value[k];
+    float g = global.at(x, y);
+    if (v > 0.0f) {
+      if (rule == ArcRule::Neutral) g = std::max(g, 0.0f);
+      positive += static_cast<double>(v * g);
+    } else {
+      negative += static_cast<double>(v * g);
     }
   }
-  return s;
+  return positive + negative;
 }
 
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
   PlacedLocalGrid p;
-  p.offset.resize(local.size());
-  p.value = local.value;
+  p.offset.reserve(local.size());
+  p.value.reserve(local.size());
   const std::ptrdiff_t w = global.grid.width();
-  for (std::size_t k = 0; k < local.size(); ++k) p.offset[k] = local.dy[k] * w + local.dx[k];
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t k = 0; k < local.size(); ++k) {
+      if ((local.value[k] > 0.0f) != (pass == 0)) continue;
+      p.offset.push_back(local.dy[k] * w + local.dx[k]);
+      p.value.push_back(local.value[k]);
+    }
+    if (pass == 0) p.arc_count = p.value.size();
+  }
   return p;
 }
 
@@ -81,7 +100,7 @@ SearchResult search_exhaustive(const Lattice& lattice, const SearchLevel& finest
       for (int ix = lattice.x0; ix <= lattice.x1; ++ix) candidates.push_back({ix, iy, it, 0.0});
     }
   }
-  score_all(candidates, finest, result);
+  score_all(candidates, lattice, finest, result);
   result.best = candidates.front();
   for (const auto& c : candidates) {
     if (better(c, result.best)) result.best = c;
@@ -124,7 +143,7 @@ SearchResult search_multires(const Lattice& lattice, const std::vector<SearchLev
       }
       std::sort(candidates.begin(), candidates.end(), index_less);
     }
-    score_all(candidates, levels[l], result);
+    score_all(candidates, lattice, levels[l], result);
     const auto k = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, keep)), candidates.size());
     kept = candidates;
     std::partial_sort(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k), kept.end(), better);
@@ -135,6 +154,62 @@ SearchResult search_multires(const Lattice& lattice, const std::vector<SearchLev
     }
   }
   return result;
+}
+
+namespace {
+
+/// Vertex of the parabola through (-1, a), (0, b), (1, c), when b is a strict peak.
+double parabola_vertex(double a, double b, double c) {
+  const double curvature = a - 2.0 * b + c;
+  if (!(curvature < 0.0) || b < a || b < c) return 0.0;
+  return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+}
+
+}  // namespace
+
+RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
+                   int subdivisions) {
+  const PaddedGrid& g = *finest.global;
+  const int sub = std::max(1, subdivisions);
+  const Eigen::Vector2d zero = Eigen::Vector2d::Zero();
+  auto heading = [&](int j) { return lattice.theta(best.it + static_cast<double>(j) / sub); };
+  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.width && y < g.height; };
+
+  // Heading: 3 x 3 cells x (2 sub + 1) headings.
+  std::vector<PlacedLocalGrid> placed;
+  for (int j = -sub; j <= sub; ++j) placed.push_back(place(finest.make_local(heading(j), zero), g));
+  auto placed_at = [&](int j) -> const PlacedLocalGrid& {
+    return placed[static_cast<std::size_t>(j + sub)];
+  };
+  int bj = 0, bx = best.ix, by = best.iy;
+  double top = best.score;
+  for (int j = -sub; j <= sub; ++j) {
+    for (int y = best.iy - 1; y <= best.iy + 1; ++y) {
+      for (int x = best.ix - 1; x <= best.ix + 1; ++x) {
+        if (!inside(x, y)) continue;
+        const double s = score(g, placed_at(j), x, y);
+        if (s > top) top = s, bj = j, bx = x, by = y;
+      }
+    }
+  }
+  double dt = 0.0;
+  if (bj > -sub && bj < sub) {
+    dt = parabola_vertex(score(g, placed_at(bj - 1), bx, by), top,
+                         score(g, placed_at(bj + 1), bx, by));
+  }
+
+  // Position: a parabola through the chosen cell's neighbours along x and along y.
+  const PlacedLocalGrid& at_heading = placed_at(bj);
+  auto axis_offset = [&](int x0, int y0, int x1, int y1) {
+    if (!inside(x0, y0) || !inside(x1, y1)) return 0.0;
+    return parabola_vertex(score(g, at_heading, x0, y0), top, score(g, at_heading, x1, y1));
+  };
+  RefinedPose r;
+  r.score = top;
+  r.ix = bx + axis_offset(bx - 1, by, bx + 1, by);
+  r.iy = by + axis_offset(bx, by - 1, bx, by + 1);
+  r.it = best.it + (bj + dt) / sub;
+  return r;
 }
 
 }  // namespace gridloc

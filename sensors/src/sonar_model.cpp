@@ -26,6 +26,7 @@ class Canvas {
     const int cy = static_cast<int>(std::floor(y / res_ + 0.5));
     return (cy + half_) * side_ + (cx + half_);
   }
+  int index_of_cell(int cx, int cy) const { return (cy + half_) * side_ + (cx + half_); }
   int cx(int idx) const { return idx % side_ - half_; }
   int cy(int idx) const { return idx / side_ - half_; }
   bool adjacent8(int a, int b) const {
@@ -73,29 +74,39 @@ int angular_samples(double cone, double rho, double res) {
   return std::max(2, static_cast<int>(std::ceil(cone * rho / (0.25 * res))) + 1);
 }
 
-void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta, int pass_arc,
+void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
+              const Eigen::Vector2d& centre, const SonarModelOptions& options, int pass_arc,
               int pass_free) {
   const double res = canvas.resolution();
   // seed 001 eq. (3), in this project's axes (x forward): sensor at (r, beta + theta), axis
   // at epsilon + theta.
-  const double sx = s.radius * std::cos(s.bearing + theta);
-  const double sy = s.radius * std::sin(s.bearing + theta);
+  const double sx = centre.x() + s.radius * std::cos(s.bearing + theta);
+  const double sy = centre.y() + s.radius * std::sin(s.bearing + theta);
   const double axis = s.heading + theta;
   const bool echo = d < s.max_range;
   const double free_limit = echo ? d : s.max_range;
 
-  // Arc: ordered distinct cells along the arc, thinned to an 8-connected chain by dropping
-  // the corner cell of every 4-connected step.
+  // Arc: for each layer (the echo range, and +-arc_depth cells around it when asked), the
+  // ordered distinct cells along the arc, thinned to an 8-connected chain by dropping the
+  // corner cell of every 4-connected step.
   std::vector<int> arc;
   if (echo) {
-    const int m = angular_samples(s.cone, d, res);
-    for (int k = 0; k < m; ++k) {
-      const double a = axis - 0.5 * s.cone + s.cone * k / (m - 1);
-      const int idx = canvas.cell_index(sx + d * std::cos(a), sy + d * std::sin(a));
-      canvas.mark(idx, pass_arc);  // every touched cell is excluded from the free sector
-      if (!arc.empty() && arc.back() == idx) continue;
-      while (arc.size() >= 2 && canvas.adjacent8(idx, arc[arc.size() - 2])) arc.pop_back();
-      arc.push_back(idx);
+    const double depth = options.arc_depth_cells * res;
+    const int layers = depth > 0.0 ? 1 : 0;
+    for (int layer = -layers; layer <= layers; ++layer) {
+      const double rho = d + layer * depth;
+      const int m = angular_samples(s.cone, rho, res);
+      const std::size_t first = arc.size();
+      for (int k = 0; k < m; ++k) {
+        const double a = axis - 0.5 * s.cone + s.cone * k / (m - 1);
+        const int idx = canvas.cell_index(sx + rho * std::cos(a), sy + rho * std::sin(a));
+        // Every touched cell is excluded from the free sector; a cell joins the arc once.
+        if (!canvas.mark(idx, pass_arc)) continue;
+        while (arc.size() >= first + 2 && canvas.adjacent8(idx, arc[arc.size() - 2])) {
+          arc.pop_back();
+        }
+        arc.push_back(idx);
+      }
     }
     const float v = 1.0f / static_cast<float>(arc.size());
     for (int idx : arc) canvas.arc(idx) += v;
@@ -136,25 +147,27 @@ void check_resolution(double resolution) {
 }  // namespace
 
 SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
-                                   double theta, double resolution) {
+                                   double theta, double resolution,
+                                   const Eigen::Vector2d& centre,
+                                   const SonarModelOptions& options) {
   check_resolution(resolution);
-  Canvas canvas(ring.reach() + resolution, resolution);
+  Canvas canvas(ring.reach() + resolution + centre.norm(), resolution);
   int pass = 0;
   for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
-    add_cone(canvas, ring.sonars[i], ranges[i], theta, pass, pass + 1);
+    add_cone(canvas, ring.sonars[i], ranges[i], theta, centre, options, pass, pass + 1);
     pass += 2;
   }
   // Footprint: its n cells share -N/n, overriding the cones (the robot stands there).
   if (ring.footprint.polygon.size() >= 3) {
     const double c = std::cos(theta), s = std::sin(theta);
     std::vector<int> cells;
-    const int half = static_cast<int>(std::ceil(ring.reach() / resolution));
+    const int half = static_cast<int>(std::ceil((ring.reach() + centre.norm()) / resolution));
     for (int cy = -half; cy <= half; ++cy) {
       for (int cx = -half; cx <= half; ++cx) {
-        const double wx = cx * resolution, wy = cy * resolution;
+        const double wx = cx * resolution - centre.x(), wy = cy * resolution - centre.y();
         // Cell centre back into the robot frame.
         const Eigen::Vector2d p(c * wx + s * wy, -s * wx + c * wy);
-        if (footprint_contains(ring.footprint, p)) cells.push_back(canvas.cell_index(wx, wy));
+        if (footprint_contains(ring.footprint, p)) cells.push_back(canvas.index_of_cell(cx, cy));
       }
     }
     const float v = -static_cast<float>(ring.sonars.size()) / static_cast<float>(cells.size());
@@ -167,14 +180,16 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
 }
 
 SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double>& ranges,
-                                 double theta, double resolution) {
-  const SparseLocalGrid upright = rasterize_oriented(ring, ranges, 0.0, resolution);
-  Canvas canvas(ring.reach() + 2 * resolution, resolution);
+                                 double theta, double resolution, const Eigen::Vector2d& centre,
+                                 const SonarModelOptions& options) {
+  const SparseLocalGrid upright =
+      rasterize_oriented(ring, ranges, 0.0, resolution, Eigen::Vector2d::Zero(), options);
+  Canvas canvas(ring.reach() + 2 * resolution + centre.norm(), resolution);
   const double c = std::cos(theta), s = std::sin(theta);
   // Write into the arc/free layers by sign so that "later value wins" holds per cell.
   for (std::size_t k = 0; k < upright.size(); ++k) {
     const double x = upright.dx[k] * resolution, y = upright.dy[k] * resolution;
-    const int idx = canvas.cell_index(c * x - s * y, s * x + c * y);
+    const int idx = canvas.cell_index(centre.x() + c * x - s * y, centre.y() + s * x + c * y);
     const float v = upright.value[k];
     canvas.arc(idx) = v > 0.0f ? v : 0.0f;
     canvas.free(idx) = v < 0.0f ? v : 0.0f;
@@ -183,9 +198,11 @@ SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double
 }
 
 SparseLocalGrid rasterize(const SonarRing& ring, const std::vector<double>& ranges, double theta,
-                          double resolution, LocalModel model) {
-  return model == LocalModel::Oriented ? rasterize_oriented(ring, ranges, theta, resolution)
-                                       : rasterize_turned(ring, ranges, theta, resolution);
+                          double resolution, LocalModel model, const Eigen::Vector2d& centre,
+                          const SonarModelOptions& options) {
+  return model == LocalModel::Oriented
+             ? rasterize_oriented(ring, ranges, theta, resolution, centre, options)
+             : rasterize_turned(ring, ranges, theta, resolution, centre, options);
 }
 
 }  // namespace gridloc

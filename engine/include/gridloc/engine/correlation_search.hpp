@@ -10,39 +10,59 @@
 
 namespace gridloc {
 
+/// How an arc cell (local value > 0) scores on a global free cell. `Signed` is seed 001
+/// eq. (1) literally: the product is negative. `Neutral` scores it 0: an arc says that *one*
+/// of its cells is occupied, not that each is, so an arc cell over free space contradicts
+/// nothing. Free-sector and footprint cells (local value < 0) always score signed.
+/// Neutral removes a heading bias of the signed rule on oblique walls (see README).
+enum class ArcRule { Neutral, Signed };
+
 /// A global grid padded with `pad` unknown (0) cells on every side, so that any local grid
-/// of extent <= pad placed on any cell of the map needs no bounds checks.
+/// of extent <= pad placed on any cell of the map needs no bounds checks. `arc_view` is the
+/// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed.
 struct PaddedGrid {
   EvidenceGrid grid;  ///< the padded grid; map cell (ix, iy) is grid cell (ix + pad, iy + pad)
+  std::vector<float> arc_view;
   int pad = 0;
   int width = 0;   ///< the unpadded map's width, cells
   int height = 0;  ///< the unpadded map's height, cells
 };
 
-PaddedGrid pad_grid(const EvidenceGrid& grid, int pad);
+PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule = ArcRule::Neutral);
 
-/// Reference score: sum over local cells of value * global cell, cells outside the grid
-/// counting 0. Plain loops, kept as the oracle for the fast path.
-double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy);
+/// Reference score: sum over local cells of value * global cell (arc cells per `rule`), cells
+/// outside the grid counting 0; positive cells and negative cells are summed separately, each
+/// in the local grid's order, then added. Plain loops, kept as the oracle for the fast path.
+double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy,
+                       ArcRule rule = ArcRule::Neutral);
 
-/// A local grid turned into flat offsets in one padded grid (computed once per heading).
+/// A local grid turned into flat offsets in one padded grid (computed once per heading):
+/// the first `arc_count` cells are the positive ones, then the negative ones, each group in
+/// the local grid's order.
 struct PlacedLocalGrid {
   std::vector<std::ptrdiff_t> offset;
   std::vector<float> value;
+  std::size_t arc_count = 0;
 };
 
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 
 /// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
-/// and the local grid's extent must not exceed the padding.
+/// and the local grid's extent must not exceed the padding. Equal to score_reference exactly.
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
-  const float* base = global.grid.cells.data() +
-                      static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() +
-                      (cx + global.pad);
-  double s = 0.0;
+  const std::ptrdiff_t origin =
+      static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
+  const float* arc = global.arc_view.data() + origin;
+  const float* all = global.grid.cells.data() + origin;
+  double positive = 0.0, negative = 0.0;
   const std::size_t n = local.value.size();
-  for (std::size_t k = 0; k < n; ++k) s += static_cast<double>(local.value[k] * base[local.offset[k]]);
-  return s;
+  for (std::size_t k = 0; k < local.arc_count; ++k) {
+    positive += static_cast<double>(local.value[k] * arc[local.offset[k]]);
+  }
+  for (std::size_t k = local.arc_count; k < n; ++k) {
+    negative += static_cast<double>(local.value[k] * all[local.offset[k]]);
+  }
+  return positive + negative;
 }
 
 /// A candidate of the search lattice: map cell and heading index.
@@ -57,14 +77,17 @@ struct LatticePose {
 struct Lattice {
   int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  ///< inclusive cell ranges, clipped to the map
   int headings = 1;                    ///< heading index it in [0, headings)
-  std::function<double(int it)> theta;  ///< heading of index it, grid frame (rad)
+  double theta0 = 0.0;                 ///< heading of index 0, grid frame (rad)
+  double step_theta = 0.0;             ///< rad
+  double theta(double it) const { return theta0 + it * step_theta; }
 };
 
-/// One resolution level of the search: padded global grid, resolution and a maker of local
-/// grids for a heading index (built directly at this level's resolution, seed 001 §2).
+/// One resolution level of the search: padded global grid and a maker of local grids for a
+/// heading (grid frame, rad) and a robot centre offset from its cell's centre (m), built
+/// directly at this level's resolution (seed 001 §2).
 struct SearchLevel {
   const PaddedGrid* global = nullptr;
-  std::function<SparseLocalGrid(int it)> make_local;
+  std::function<SparseLocalGrid(double theta, const Eigen::Vector2d& centre)> make_local;
 };
 
 struct SearchResult {
@@ -83,5 +106,22 @@ SearchResult search_exhaustive(const Lattice& lattice, const SearchLevel& finest
 /// margin, +-1 heading) of the `keep` best poses of the level above. Ties as exhaustive.
 SearchResult search_multires(const Lattice& lattice, const std::vector<SearchLevel>& levels,
                              int keep);
+
+/// The refined pose: lattice coordinates with fractions (ix + dx, iy + dy, it + dt).
+struct RefinedPose {
+  double ix = 0.0;
+  double iy = 0.0;
+  double it = 0.0;
+  double score = 0.0;  ///< score at the best sub-lattice pose (before the parabola)
+};
+
+/// Sub-cell refinement of the lattice winner, on the finest level: the winner's cell and its
+/// 8 neighbours are scored at headings within +-1 lattice step in steps of 1/`subdivisions`;
+/// the best of these is refined by a parabola through its neighbours along x, y and heading
+/// (offset clamped to half a step; an axis whose neighbour leaves the map or scores higher
+/// stays put). The model is rebuilt for every sub-step heading, never rotated. Returns
+/// lattice units.
+RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
+                   int subdivisions = 4);
 
 }  // namespace gridloc

@@ -29,8 +29,9 @@ struct SearchStats {
 };
 
 struct Estimate {
-  Pose2 pose;                    ///< best pose, world frame
-  double score = 0.0;            ///< S = sum L * G at the best pose (seed 001 eq. 1)
+  Pose2 pose;                    ///< best pose after sub-cell refinement, world frame
+  Pose2 lattice_pose;            ///< the search's exact winner on the lattice, world frame
+  double score = 0.0;            ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
   double normalized_score = 0.0; ///< score / sum |L|: 1 when every local cell matches fully
   double second_score = 0.0;     ///< best score of a pose distinct from the winner
   double confidence = 0.0;       ///< (score - second_score) / score, clamped to [0, 1]

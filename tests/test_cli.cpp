@@ -1,0 +1,207 @@
+// End-to-end tests of the gridloc command-line tool (examples/gridloc_cli): simulate ->
+// localize round trip, eval JSON, and the one-line error contract (stderr, exit code 2).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gridloc/engine/evaluation.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+using test::TempDir;
+
+struct CliRun {
+  int status = -1;  ///< exit status, or -1 if the process did not exit normally
+  std::string out;
+  std::string err;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// Runs the gridloc binary with `args` (already quoted where needed), capturing both streams.
+CliRun run_cli(const TempDir& dir, const std::string& args) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  const std::string cmd =
+      quote(GRIDLOC_CLI_PATH) + " " + args + " >" + quote(out) + " 2>" + quote(err);
+  const int raw = std::system(cmd.c_str());
+  CliRun r;
+  r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> v;
+  std::stringstream ss(s);
+  std::string line;
+  while (std::getline(ss, line)) v.push_back(line);
+  return v;
+}
+
+/// Expects exit status 2, nothing on stdout, and exactly one stderr line starting with
+/// "gridloc: error:" and containing `part`.
+void expect_cli_error(const CliRun& r, const std::string& part) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  const auto l = lines(r.err);
+  ASSERT_EQ(l.size(), 1u) << "stderr: " << r.err;
+  EXPECT_EQ(l[0].rfind("gridloc: error:", 0), 0u) << l[0];
+  EXPECT_NE(l[0].find(part), std::string::npos) << "'" << l[0] << "' lacks '" << part << "'";
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // The tool finds bundled maps by name through this variable first.
+    ::setenv("GRIDLOC_DATA_DIR", test::maps_dir().c_str(), 1);
+  }
+  TempDir dir;
+  std::string map = test::map_path("room_rect");
+  std::string ring = test::ring_path();
+};
+
+TEST_F(Cli, SimulateThenLocalize) {
+  // The pose of the example must be free for the whole chair footprint.
+  const OccupancyMap m = load_ros_map(map);
+  const SonarRing sonar_ring = load_sonar_ring(ring);
+  const Pose2 pose{1.0, 1.0, 0.0};
+  for (double fx = -0.55; fx <= 0.55 + 1e-9; fx += 0.05) {
+    for (double fy = -0.35; fy <= 0.35 + 1e-9; fy += 0.05) {
+      const Pose2 g = m.geometry.to_grid_frame({pose.x + fx, pose.y + fy, 0.0});
+      const Cell c = m.geometry.cell_of(g.x, g.y);
+      ASSERT_TRUE(m.geometry.contains(c.ix, c.iy));
+      ASSERT_EQ(m.at(c.ix, c.iy), CellState::Free) << fx << "," << fy;
+    }
+  }
+
+  const std::string readings = dir.file("readings.json");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --ring " + quote(ring) +
+                                      " --pose 1,1,0 --out " + quote(readings));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  EXPECT_EQ(sim.out, "");
+  const auto written = nlohmann::json::parse(read_file(readings));
+  // The file holds exactly what the library simulates (doubles round-trip through JSON).
+  EXPECT_EQ(written.at("ranges_m").get<std::vector<double>>(), simulate_sonar(m, sonar_ring, pose));
+  EXPECT_EQ(written.at("pose").at("x").get<double>(), 1.0);
+
+  const CliRun loc = run_cli(dir, "localize --map " + quote(map) + " --ring " + quote(ring) +
+                                      " --readings " + quote(readings) + " --prior 1.2,0.9,0.2");
+  ASSERT_EQ(loc.status, 0) << loc.err;
+  EXPECT_EQ(loc.err, "");
+  const auto j = nlohmann::json::parse(loc.out);
+  const double x = j.at("pose").at("x"), y = j.at("pose").at("y"), t = j.at("pose").at("theta");
+  EXPECT_LE(std::hypot(x - 1.0, y - 1.0), 0.10) << loc.out;
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(t))), 7.0) << loc.out;
+  EXPECT_NEAR(j.at("theta_deg").get<double>(), rad2deg(t), 1e-9);
+  for (const char* key :
+       {"score", "normalized_score", "confidence", "alternatives", "stats", "timing"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j.at("stats").at("levels").get<int>(), 3);
+}
+
+TEST_F(Cli, SimulateToStdout) {
+  const CliRun r = run_cli(dir, "simulate --map " + quote(map) + " --pose 3,2,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("ranges_m").size(), 14u);
+}
+
+TEST_F(Cli, MissingMapFile) {
+  const std::string missing = dir.file("no_such_map.yaml");
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(missing) + " --readings " +
+                                    quote(readings) + " --prior 1,1,0"),
+                   missing);
+  expect_cli_error(run_cli(dir, "simulate --map " + quote(missing) + " --pose 1,1,0"), missing);
+}
+
+TEST_F(Cli, MalformedPrior) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  for (const std::string prior : {"1,2", "1,a,0", "1,2,3,4", "x"}) {
+    expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " +
+                                      quote(readings) + " --prior " + quote(prior)),
+                     "--prior");
+  }
+}
+
+TEST_F(Cli, ReadingsCountMismatch) {
+  const std::string readings = dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 3,2,0"),
+                   "expected 14");
+}
+
+TEST_F(Cli, MissingReadingsFileAndOption) {
+  const std::string missing = dir.file("none.json");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(missing) +
+                                    " --prior 3,2,0"),
+                   missing);
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --prior 3,2,0"), "--readings");
+}
+
+TEST_F(Cli, BadStrategyAndSubcommand) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 3,2,0 --strategy fastest"),
+                   "fastest");
+  const CliRun r = run_cli(dir, "teleport");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
+}
+
+TEST_F(Cli, EvalJson) {
+  const CliRun r = run_cli(dir, "eval --trials 2 --maps room_rect --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("trials").get<int>(), 2);
+  const auto& configs = j.at("configurations");
+  ASSERT_TRUE(configs.is_array());
+  ASSERT_EQ(configs.size(), 4u);
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& c : configs) {
+    for (const char* key : {"local", "global", "success_rate", "mean_position_error_m",
+                            "mean_heading_error_deg", "median_ms"}) {
+      EXPECT_TRUE(c.contains(key)) << key << " in " << c.dump();
+    }
+    seen.insert({c.at("local").get<std::string>(), c.at("global").get<std::string>()});
+    const double rate = c.at("success_rate");
+    EXPECT_GE(rate, 0.0);
+    EXPECT_LE(rate, 1.0);
+  }
+  EXPECT_EQ(
+      seen,
+      (std::set<std::pair<std::string, std::string>>{
+          {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -1,0 +1,47 @@
+// Tests of sensors/src/readings_io.cpp: readings JSON files.
+#include "gridloc/sensors/readings_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+using test::expect_error;
+using test::TempDir;
+
+TEST(ReadingsIo, LoadsRangesAndIgnoresOtherKeys) {
+  TempDir dir;
+  const std::string p =
+      dir.write("r.json", R"({"pose": {"x": 1, "y": 2, "theta": 0}, "ranges_m": [1.5, 6, 0.25]})");
+  EXPECT_EQ(load_readings(p), (std::vector<double>{1.5, 6.0, 0.25}));
+}
+
+TEST(ReadingsIo, NullIsReadAsNaN) {
+  TempDir dir;
+  const std::string p = dir.write("r.json", R"({"ranges_m": [1.0, null]})");
+  const auto r = load_readings(p);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0], 1.0);
+  EXPECT_TRUE(std::isnan(r[1]));
+}
+
+TEST(ReadingsIo, Errors) {
+  TempDir dir;
+  const std::string missing = dir.file("none.json");
+  expect_error([&] { load_readings(missing); }, {missing, "not found"});
+  const std::string malformed = dir.write("a.json", R"({"ranges_m": [1.0, )");
+  expect_error([&] { load_readings(malformed); }, {malformed, "malformed JSON"});
+  const std::string no_key = dir.write("b.json", R"({"ranges": [1.0]})");
+  expect_error([&] { load_readings(no_key); }, {no_key, "ranges_m"});
+  const std::string not_array = dir.write("c.json", R"({"ranges_m": 2.0})");
+  expect_error([&] { load_readings(not_array); }, {not_array, "ranges_m"});
+  const std::string text = dir.write("d.json", R"({"ranges_m": [1.0, "far"]})");
+  expect_error([&] { load_readings(text); }, {text, "ranges_m", "far"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -1,0 +1,86 @@
+#pragma once
+// Helpers shared by the test files: bundled data paths, temporary folders, error checks.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <random>
+#include <string>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc::test {
+
+namespace fs = std::filesystem;
+
+/// The source tree's maps/ folder (set by tests/CMakeLists.txt).
+inline std::string maps_dir() {
+  return GRIDLOC_TEST_MAPS_DIR;
+}
+inline std::string map_path(const std::string& name) {
+  return maps_dir() + "/" + name + ".yaml";
+}
+inline std::string ring_path() {
+  return maps_dir() + "/sensors/wheelchair_14.yaml";
+}
+
+/// A fresh folder under the system temp directory, removed with its contents on destruction.
+/// The name holds the test's name, the process id and a random number, so tests run in
+/// parallel by ctest never share one.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? std::string(info->test_suite_name()) + "_" + info->name() : "gridloc";
+    for (char& ch : name) {
+      if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    }
+    std::random_device rd;
+    path_ = fs::temp_directory_path() /
+            ("gridloc_" + name + "_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const fs::path& path() const { return path_; }
+  /// Path of `name` inside the folder, as a string.
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  /// Writes `text` to `name` inside the folder and returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string p = file(name);
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    return p;
+  }
+
+ private:
+  fs::path path_;
+};
+
+/// Expects `fn` to throw gridloc::Error whose message contains every one of `parts`.
+inline void expect_error(const std::function<void()>& fn,
+                         std::initializer_list<std::string> parts) {
+  try {
+    fn();
+    ADD_FAILURE() << "expected gridloc::Error, nothing was thrown";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    for (const auto& part : parts) {
+      EXPECT_NE(msg.find(part), std::string::npos)
+          << "message '" << msg << "' does not contain '" << part << "'";
+    }
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected gridloc::Error, got another exception: " << e.what();
+  }
+}
+
+}  // namespace gridloc::test
