@@ -15,10 +15,13 @@
 namespace gridloc {
 namespace {
 
-/// Floor on the success rate of oriented + thinned in the small run below. The lead raises
-/// it as accuracy work lands.
-constexpr double kOrientedThinnedFloor = 0.8;
-constexpr int kTrialsPerMap = 15;
+/// Floor on the success rate of oriented + thinned in the small run below (the full run of
+/// 300 trials reaches 99-100 %; 20 per room leaves room for one or two unlucky draws).
+constexpr double kOrientedThinnedFloor = 0.95;
+/// The paper's ordering must show with a margin: oriented + thinned beats turned + raw by at
+/// least this much (74 % vs 99 % in seed 001).
+constexpr double kMinimumGain = 0.10;
+constexpr int kTrialsPerMap = 20;
 
 std::vector<EvalMap> bundled_rooms() {
   std::vector<EvalMap> maps;
@@ -71,7 +74,7 @@ TEST(Evaluation, OrientedThinnedBeatsTurnedRaw) {
   }
   const auto& best = find(r, LocalModel::Oriented, GlobalModel::Thinned);
   const auto& baseline = find(r, LocalModel::Turned, GlobalModel::Raw);
-  EXPECT_GE(best.success_rate, baseline.success_rate);
+  EXPECT_GE(best.success_rate, baseline.success_rate + kMinimumGain);
   EXPECT_GE(best.success_rate, kOrientedThinnedFloor);
 }
 

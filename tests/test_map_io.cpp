@@ -208,7 +208,7 @@ TEST(MapIo, SaveAndLoadRoundTrip) {
 // Known bug (grids/src/map_io.cpp, save_ros_map writes the YAML with the stream's default
 // 6 significant digits): an origin of 1234.56789 comes back as 1234.57 and a yaw of pi/2 as
 // 1.5708. Enable once save_ros_map writes round-trip precision.
-TEST(MapIo, DISABLED_SaveKeepsFullPrecision) {
+TEST(MapIo, SaveKeepsFullPrecision) {
   TempDir dir;
   GridGeometry g;
   g.resolution = 0.05;
@@ -344,7 +344,7 @@ TEST(MapIoErrors, BadThresholds) {
 // Known bug (grids/src/map_io.cpp:54, `kv.first.as<std::string>()`): a non-scalar key
 // escapes as YAML::TypedBadConversion instead of gridloc::Error, so the CLI reports an
 // "internal error" with exit code 1. Enable once fixed.
-TEST(MapIoErrors, DISABLED_NonScalarKeyThrowsGridlocError) {
+TEST(MapIoErrors, NonScalarKeyThrowsGridlocError) {
   TempDir dir;
   const std::string p = dir.write("m.yaml", "? [a, b]\n: 1\n" + yaml("m.pgm"));
   expect_error([&] { load_ros_map(p); }, {p, "key"});

@@ -135,15 +135,30 @@ TEST(SonarModel, CellsLieInsideTheCone) {
   const double d = 3.0;
   const SparseLocalGrid g = rasterize_oriented(ring, {d}, 0.0, kRes);
   const double slack = std::sqrt(0.5) * kRes + 1e-9;  // half a cell diagonal
+  const double depth = SonarModelOptions{}.arc_depth_cells * kRes;
   for (std::size_t k = 0; k < g.size(); ++k) {
     const double x = g.dx[k] * kRes, y = g.dy[k] * kRes;
     const double r = std::hypot(x, y);
-    EXPECT_LE(r, d + slack) << g.dx[k] << "," << g.dy[k];
+    EXPECT_LE(r, d + depth + slack) << g.dx[k] << "," << g.dy[k];
     // Lateral offset within the 6 deg half-aperture (plus half a cell diagonal).
     EXPECT_LE(std::abs(y), x * std::tan(deg2rad(6.0)) + slack) << g.dx[k] << "," << g.dy[k];
     if (g.value[k] > 0.0f) {
-      EXPECT_NEAR(r, d, slack) << g.dx[k] << "," << g.dy[k];
+      EXPECT_NEAR(r, d, depth + slack) << g.dx[k] << "," << g.dy[k];
     }
+  }
+}
+
+TEST(SonarModel, ArcDepthWidensTheArcButKeepsItsMass) {
+  const auto ring = one_sonar();
+  const SonarModelOptions paper{0.0};
+  for (double d : {1.0, 2.5, 4.0}) {
+    const SparseLocalGrid thin = rasterize_oriented(ring, {d}, 0.3, kRes, {}, paper);
+    const SparseLocalGrid deep = rasterize_oriented(ring, {d}, 0.3, kRes);
+    const auto thin_arc = positive_cells(thin), deep_arc = positive_cells(deep);
+    EXPECT_GT(deep_arc.size(), thin_arc.size()) << d;
+    double sum = 0.0;
+    for (float v : deep.value) sum += v > 0.0f ? v : 0.0f;
+    EXPECT_NEAR(sum, 1.0, 1e-4) << d;
   }
 }
 
@@ -153,7 +168,9 @@ TEST(SonarModel, ArcIsASimpleEightConnectedChain) {
   for (const SonarRing* ring : {&straight, &mounted}) {
     for (double d : {0.5, 1.0, 2.0, 3.7, 5.5}) {
       for (int theta_deg = -180; theta_deg < 180; theta_deg += 7) {
-        const SparseLocalGrid g = rasterize_oriented(*ring, {d}, deg2rad(theta_deg), kRes);
+        // Seed 001's one-cell arc (arc depth 0).
+        const SparseLocalGrid g =
+            rasterize_oriented(*ring, {d}, deg2rad(theta_deg), kRes, {}, SonarModelOptions{0.0});
         EXPECT_TRUE(is_simple_8_chain(positive_cells(g)))
             << "range " << d << " theta " << theta_deg << " radius " << ring->sonars[0].radius;
       }
@@ -165,7 +182,8 @@ TEST(SonarModel, ArcIsASimpleChainAtFinerResolution) {
   const auto ring = one_sonar();
   for (double d : {0.8, 2.0, 4.5}) {
     for (int theta_deg = 0; theta_deg < 90; theta_deg += 11) {
-      const SparseLocalGrid g = rasterize_oriented(ring, {d}, deg2rad(theta_deg), 0.05);
+      const SparseLocalGrid g =
+          rasterize_oriented(ring, {d}, deg2rad(theta_deg), 0.05, {}, SonarModelOptions{0.0});
       EXPECT_TRUE(is_simple_8_chain(positive_cells(g))) << d << " " << theta_deg;
     }
   }

@@ -178,7 +178,7 @@ TEST(SonarRingErrors, ValidateRingBuiltInCode) {
 // Known bug (sensors/src/sonar_ring.cpp:133 `root["name"].as<std::string>()`, and line 24 for
 // non-scalar keys): these escape as YAML::TypedBadConversion instead of gridloc::Error, so
 // the CLI reports an "internal error" with exit code 1. Enable once fixed.
-TEST(SonarRingErrors, DISABLED_NonScalarNameOrKeyThrowsGridlocError) {
+TEST(SonarRingErrors, NonScalarNameOrKeyThrowsGridlocError) {
   TempDir dir;
   const std::string sonar = "bearing_deg: 0, radius_m: 0.3, heading_deg: 0";
   const std::string name = dir.write("a.yaml", "name: [a, b]\nsonars:\n  - {" + sonar + "}\n");

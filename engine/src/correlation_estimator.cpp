@@ -10,7 +10,9 @@
 namespace gridloc {
 namespace {
 
-double level_resolution(double finest, int l) { return finest * static_cast<double>(1 << l); }
+double level_resolution(double finest, int l) {
+  return finest * static_cast<double>(1 << l);
+}
 
 /// Distinct local maxima of the scored poses: best first, each farther than the distinct
 /// radius (position or heading) from every one chosen before.
@@ -70,7 +72,8 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   for (int l = 0; l < options_.levels; ++l) {
     const double res = level_resolution(options_.resolution, l);
     const int pad = static_cast<int>(std::ceil(ring_.reach() / res)) + 3;
-    levels_.push_back(pad_grid(make_global_grid(map_, res, options_.global), pad, options_.arc_rule));
+    levels_.push_back(
+        pad_grid(make_global_grid(map_, res, options_.global), pad, options_.arc_rule));
   }
 }
 
@@ -111,7 +114,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   const int level_count = options_.strategy == SearchStrategy::Exhaustive ? 1 : options_.levels;
   for (int l = 0; l < level_count; ++l) {
     const double level_res = level_resolution(res, l);
-    levels.push_back({&levels_[static_cast<std::size_t>(l)], [&, level_res](double theta, const Eigen::Vector2d& centre) {
+    levels.push_back({&levels_[static_cast<std::size_t>(l)],
+                      [&, level_res](double theta, const Eigen::Vector2d& centre) {
                         return rasterize(ring_, observation.ranges, theta, level_res,
                                          options_.local, centre, options_.sonar);
                       }});

@@ -144,9 +144,11 @@ SearchResult search_multires(const Lattice& lattice, const std::vector<SearchLev
       std::sort(candidates.begin(), candidates.end(), index_less);
     }
     score_all(candidates, lattice, levels[l], result);
-    const auto k = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, keep)), candidates.size());
+    const auto k =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(1, keep)), candidates.size());
     kept = candidates;
-    std::partial_sort(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k), kept.end(), better);
+    std::partial_sort(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k), kept.end(),
+                      better);
     kept.resize(k);
     if (l == 0) {
       result.best = kept.front();

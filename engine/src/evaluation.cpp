@@ -34,15 +34,20 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return Rng(a * 0x100000001B3ull ^ b).next(); }
+std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
+  return Rng(a * 0x100000001B3ull ^ b).next();
+}
 
 }  // namespace
 
-std::string to_string(LocalModel m) { return m == LocalModel::Oriented ? "oriented" : "turned"; }
-std::string to_string(GlobalModel m) { return m == GlobalModel::Thinned ? "thinned" : "raw"; }
+std::string to_string(LocalModel m) {
+  return m == LocalModel::Oriented ? "oriented" : "turned";
+}
+std::string to_string(GlobalModel m) {
+  return m == GlobalModel::Thinned ? "thinned" : "raw";
+}
 
-Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance,
-                       Rng& rng) {
+Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng) {
   const GridGeometry& g = map.geometry;
   double radius = clearance;
   for (const auto& p : ring.footprint.polygon) radius = std::max(radius, p.norm() + clearance);
@@ -96,10 +101,10 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
       noise.seed = rng.next();
       const Observation obs{simulate_sonar(maps[m].map, ring, truth, noise)};
       SearchWindow window = options.window;
-      window.center = {truth.x + rng.uniform(-window.half_xy, window.half_xy),
-                       truth.y + rng.uniform(-window.half_xy, window.half_xy),
-                       normalize_angle(truth.theta +
-                                       rng.uniform(-window.half_theta, window.half_theta))};
+      window.center = {
+          truth.x + rng.uniform(-window.half_xy, window.half_xy),
+          truth.y + rng.uniform(-window.half_xy, window.half_xy),
+          normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
       // A perturbed prior can leave a map whose edge is close; pull it back onto the map.
       const Pose2 g = maps[m].map.geometry.to_grid_frame(window.center);
       const GridGeometry& geo = maps[m].map.geometry;

@@ -26,9 +26,10 @@ void run(const DemoArgs& a) {
   const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
   const auto ranges = simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()));
   SearchWindow window;
-  window.center = {truth.x + rng.uniform(-window.half_xy, window.half_xy),
-                   truth.y + rng.uniform(-window.half_xy, window.half_xy),
-                   normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
+  window.center = {
+      truth.x + rng.uniform(-window.half_xy, window.half_xy),
+      truth.y + rng.uniform(-window.half_xy, window.half_xy),
+      normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
   const CorrelationEstimator estimator(map, ring);
   const Estimate e = estimator.estimate({ranges}, window);
   const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
@@ -62,10 +63,11 @@ void run(const DemoArgs& a) {
               success ? "success" : "FAILURE");
   std::printf("score     %.3f (normalized %.3f), confidence %.2f\n", e.score, e.normalized_score,
               e.confidence);
-  std::printf("time      %.2f ms (multiresolution, %d levels, %lld poses scored; window +-%.2f m, "
-              "+-%.0f deg)\n",
-              e.stats.elapsed_ms, e.stats.levels, e.stats.poses_scored, window.half_xy,
-              rad2deg(window.half_theta));
+  std::printf(
+      "time      %.2f ms (multiresolution, %d levels, %lld poses scored; window +-%.2f m, "
+      "+-%.0f deg)\n",
+      e.stats.elapsed_ms, e.stats.levels, e.stats.poses_scored, window.half_xy,
+      rad2deg(window.half_theta));
 }
 
 }  // namespace

@@ -44,9 +44,10 @@ void run(const EvalArgs& a) {
   std::vector<EvalMap> maps;
   for (const auto& path : split(a.maps)) {
     // A bare name means a bundled map.
-    const std::string file = path.find('/') == std::string::npos && path.find(".yaml") == std::string::npos
-                                 ? data_dir() + "/" + path + ".yaml"
-                                 : path;
+    const std::string file =
+        path.find('/') == std::string::npos && path.find(".yaml") == std::string::npos
+            ? data_dir() + "/" + path + ".yaml"
+            : path;
     maps.push_back({file, load_ros_map(file)});
   }
   if (maps.empty()) throw Error("--maps names no map");
@@ -72,12 +73,9 @@ void run(const EvalArgs& a) {
     }
     nlohmann::json names = nlohmann::json::array();
     for (const auto& m : maps) names.push_back(m.name);
-    std::cout << nlohmann::json{{"trials", report.trials},
-                                {"maps", names},
-                                {"seed", a.seed},
-                                {"strategy", a.strategy},
-                                {"noise", a.noise},
-                                {"configurations", configs}}
+    std::cout << nlohmann::json{{"trials", report.trials}, {"maps", names},
+                                {"seed", a.seed},          {"strategy", a.strategy},
+                                {"noise", a.noise},        {"configurations", configs}}
                      .dump(2)
               << "\n";
     return;

@@ -37,8 +37,7 @@ void run(const LocalizeArgs& a) {
   o.resolution = window.step_xy;
   o.levels = a.levels;
   const CorrelationEstimator estimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
-  const double precompute_ms =
-      std::chrono::duration<double, std::milli>(clock::now() - t0).count();
+  const double precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
 
   Estimate e;
   std::vector<double> ms;
@@ -60,7 +59,8 @@ void run(const LocalizeArgs& a) {
 void add_localize(CLI::App& app) {
   auto a = std::make_shared<LocalizeArgs>();
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
-  auto* cmd = app.add_subcommand("localize", "Localize from sonar readings and a prior; prints JSON");
+  auto* cmd =
+      app.add_subcommand("localize", "Localize from sonar readings and a prior; prints JSON");
   cmd->add_option("--map", a->map, "map_server YAML of the known map")->required();
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--readings", a->readings, "readings JSON {\"ranges_m\": [...]}")->required();
@@ -71,7 +71,8 @@ void add_localize(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step-xy", a->window.step_xy, "translation step = grid cell (m)")
       ->capture_default_str();
-  cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")->capture_default_str();
+  cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")
+      ->capture_default_str();
   cmd->add_option("--strategy", a->strategy, "multires | exhaustive")->capture_default_str();
   cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
   cmd->add_option("--global", a->global, "global grid: thinned | raw")->capture_default_str();

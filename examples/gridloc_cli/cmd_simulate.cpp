@@ -44,10 +44,12 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("--pose", a->pose, "robot pose x,y,theta (m, m, rad)")->required();
   cmd->add_option("--out", a->out, "write the readings here instead of stdout");
   cmd->add_option("--seed", a->sim.seed, "noise seed")->capture_default_str();
-  cmd->add_option("--sigma", a->sim.range_sigma_m, "Gaussian range noise (m)")->capture_default_str();
+  cmd->add_option("--sigma", a->sim.range_sigma_m, "Gaussian range noise (m)")
+      ->capture_default_str();
   cmd->add_option("--sigma-frac", a->sim.range_sigma_frac, "range noise, fraction of the range")
       ->capture_default_str();
-  cmd->add_option("--dropout", a->sim.dropout_prob, "probability of no echo")->capture_default_str();
+  cmd->add_option("--dropout", a->sim.dropout_prob, "probability of no echo")
+      ->capture_default_str();
   cmd->add_option("--specular-deg", a->sim.specular_incidence_deg,
                   "no echo beyond this incidence angle (90 = off)")
       ->capture_default_str();

@@ -3,7 +3,9 @@
 
 namespace gridloc::cli {
 
-nlohmann::json to_json(const Pose2& p) { return {{"x", p.x}, {"y", p.y}, {"theta", p.theta}}; }
+nlohmann::json to_json(const Pose2& p) {
+  return {{"x", p.x}, {"y", p.y}, {"theta", p.theta}};
+}
 
 nlohmann::json to_json(const Estimate& e) {
   nlohmann::json alternatives = nlohmann::json::array();

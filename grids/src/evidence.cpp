@@ -15,7 +15,8 @@ OccupancyMap resample(const OccupancyMap& map, double resolution) {
   GridGeometry g = src;
   g.resolution = resolution;
   // A tolerance keeps an exact ratio (e.g. 0.05 -> 0.10) from gaining a spurious column.
-  g.width = std::max(1, static_cast<int>(std::ceil(src.width * src.resolution / resolution - 1e-9)));
+  g.width =
+      std::max(1, static_cast<int>(std::ceil(src.width * src.resolution / resolution - 1e-9)));
   g.height =
       std::max(1, static_cast<int>(std::ceil(src.height * src.resolution / resolution - 1e-9)));
 
@@ -34,7 +35,8 @@ OccupancyMap resample(const OccupancyMap& map, double resolution) {
   // Per target cell: bit 0 any occupied, bit 1 any free, bit 2 any unknown.
   Grid<std::uint8_t> flags(g, 0);
   for (int sy = 0; sy < src.height; ++sy) {
-    const int ty = std::min(g.height - 1, static_cast<int>((sy + 0.5) * src.resolution / resolution));
+    const int ty =
+        std::min(g.height - 1, static_cast<int>((sy + 0.5) * src.resolution / resolution));
     for (int sx = 0; sx < src.width; ++sx) {
       const int tx =
           std::min(g.width - 1, static_cast<int>((sx + 0.5) * src.resolution / resolution));

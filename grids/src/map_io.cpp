@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <set>
@@ -37,7 +38,7 @@ MapMode parse_mode(const std::string& s, const std::string& file) {
 
 }  // namespace
 
-MapMetadata load_map_metadata(const std::string& yaml_path) {
+static MapMetadata parse_map_metadata(const std::string& yaml_path) {
   if (!fs::exists(yaml_path)) fail(yaml_path, "map file not found");
   YAML::Node root;
   try {
@@ -47,10 +48,11 @@ MapMetadata load_map_metadata(const std::string& yaml_path) {
   }
   if (!root.IsMap()) fail(yaml_path, "expected a YAML mapping of map_server keys");
 
-  static const std::set<std::string> known = {"image",         "resolution", "origin",
-                                              "negate",        "mode",       "occupied_thresh",
-                                              "free_thresh"};
+  static const std::set<std::string> known = {"image", "resolution",      "origin",     "negate",
+                                              "mode",  "occupied_thresh", "free_thresh"};
   for (const auto& kv : root) {
+    if (!kv.first.IsScalar())
+      fail(yaml_path, "every key must be a plain name, found a non-scalar key");
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) fail(yaml_path, "unknown key '" + key + "'");
   }
@@ -93,11 +95,21 @@ MapMetadata load_map_metadata(const std::string& yaml_path) {
   }
   if (!(m.free_thresh >= 0.0 && m.free_thresh < m.occupied_thresh && m.occupied_thresh <= 1.0)) {
     fail(yaml_path, "thresholds must satisfy 0 <= free_thresh < occupied_thresh <= 1 (got " +
-                        std::to_string(m.free_thresh) + ", " +
-                        std::to_string(m.occupied_thresh) + ")");
+                        std::to_string(m.free_thresh) + ", " + std::to_string(m.occupied_thresh) +
+                        ")");
   }
-  if (root["mode"]) m.mode = parse_mode(read_scalar<std::string>(root["mode"], "mode", yaml_path), yaml_path);
+  if (root["mode"])
+    m.mode = parse_mode(read_scalar<std::string>(root["mode"], "mode", yaml_path), yaml_path);
   return m;
+}
+
+MapMetadata load_map_metadata(const std::string& yaml_path) {
+  try {
+    return parse_map_metadata(yaml_path);
+  } catch (const YAML::Exception& e) {
+    // Conversions not caught field by field (e.g. a non-scalar key) still name the file.
+    fail(yaml_path, std::string("invalid map YAML: ") + e.what());
+  }
 }
 
 OccupancyMap load_ros_map(const std::string& yaml_path) {
@@ -114,7 +126,8 @@ OccupancyMap load_ros_map(const std::string& yaml_path) {
   const int channels = img.channels();
   const bool has_alpha = channels == 2 || channels == 4;
   // map_server averages the colour channels; alpha only marks unknown (not in trinary mode).
-  const int colour_channels = (meta.mode == MapMode::Trinary || !has_alpha) ? channels : channels - 1;
+  const int colour_channels =
+      (meta.mode == MapMode::Trinary || !has_alpha) ? channels : channels - 1;
 
   GridGeometry g;
   g.resolution = meta.resolution;
@@ -171,6 +184,7 @@ void save_ros_map(const OccupancyMap& map, const std::string& yaml_path) {
   if (!cv::imwrite(pgm.string(), img)) fail(pgm.string(), "cannot write the image");
   std::ofstream out(yaml);
   if (!out) fail(yaml_path, "cannot write the map YAML");
+  out << std::setprecision(17);  // round-trip exact doubles
   out << "image: " << pgm.filename().string() << "\n"
       << "resolution: " << map.geometry.resolution << "\n"
       << "origin: [" << map.geometry.origin.x() << ", " << map.geometry.origin.y() << ", "

@@ -147,8 +147,7 @@ void check_resolution(double resolution) {
 }  // namespace
 
 SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
-                                   double theta, double resolution,
-                                   const Eigen::Vector2d& centre,
+                                   double theta, double resolution, const Eigen::Vector2d& centre,
                                    const SonarModelOptions& options) {
   check_resolution(resolution);
   Canvas canvas(ring.reach() + resolution + centre.norm(), resolution);

@@ -21,6 +21,7 @@ void check_keys(const YAML::Node& node, const std::set<std::string>& known,
                 const std::string& where) {
   if (!node.IsMap()) fail(where, "expected a mapping");
   for (const auto& kv : node) {
+    if (!kv.first.IsScalar()) fail(where, "every key must be a plain name, found a non-scalar key");
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) fail(where, "unknown key '" + key + "'");
   }
@@ -119,7 +120,7 @@ void validate_readings(const SonarRing& ring, const std::vector<double>& ranges)
   }
 }
 
-SonarRing load_sonar_ring(const std::string& yaml_path) {
+static SonarRing parse_sonar_ring(const std::string& yaml_path) {
   if (!std::filesystem::exists(yaml_path)) fail(yaml_path, "sonar ring file not found");
   YAML::Node root;
   try {
@@ -130,6 +131,7 @@ SonarRing load_sonar_ring(const std::string& yaml_path) {
   check_keys(root, {"name", "defaults", "footprint", "sonars"}, yaml_path);
 
   SonarRing ring;
+  if (root["name"] && !root["name"].IsScalar()) fail(yaml_path, "key 'name' must be a string");
   ring.name = root["name"] ? root["name"].as<std::string>() : yaml_path;
   SonarSpec defaults;
   if (root["defaults"]) {
@@ -146,8 +148,8 @@ SonarRing load_sonar_ring(const std::string& yaml_path) {
   int i = 0;
   for (const auto& node : root["sonars"]) {
     const std::string w = yaml_path + ": sonars[" + std::to_string(i++) + "]";
-    check_keys(node, {"bearing_deg", "radius_m", "heading_deg", "cone_deg", "min_range_m",
-                      "max_range_m"},
+    check_keys(node,
+               {"bearing_deg", "radius_m", "heading_deg", "cone_deg", "min_range_m", "max_range_m"},
                w);
     for (const char* req : {"bearing_deg", "radius_m", "heading_deg"}) {
       if (!node[req]) fail(w, std::string("missing key '") + req + "'");
@@ -172,6 +174,15 @@ SonarRing load_sonar_ring(const std::string& yaml_path) {
     fail(yaml_path, e.what());
   }
   return ring;
+}
+
+SonarRing load_sonar_ring(const std::string& yaml_path) {
+  try {
+    return parse_sonar_ring(yaml_path);
+  } catch (const YAML::Exception& e) {
+    // Conversions not caught field by field (e.g. a non-scalar key or name) name the file.
+    fail(yaml_path, std::string("invalid sonar ring YAML: ") + e.what());
+  }
 }
 
 }  // namespace gridloc

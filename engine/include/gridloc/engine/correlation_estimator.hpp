@@ -14,16 +14,16 @@ namespace gridloc {
 enum class SearchStrategy { Exhaustive, Multires };
 
 struct CorrelationOptions {
-  LocalModel local = LocalModel::Oriented;   ///< oriented (seed 001 §3) or turned (baseline)
-  GlobalModel global = GlobalModel::Thinned; ///< thinned (seed 001 §5) or raw (baseline)
+  LocalModel local = LocalModel::Oriented;    ///< oriented (seed 001 §3) or turned (baseline)
+  GlobalModel global = GlobalModel::Thinned;  ///< thinned (seed 001 §5) or raw (baseline)
   SearchStrategy strategy = SearchStrategy::Multires;
   ArcRule arc_rule = ArcRule::Neutral;  ///< how arc cells score on free space (see ArcRule)
   SonarModelOptions sonar;              ///< local grid model (arc depth)
-  double resolution = 0.1;  ///< finest grid cell = translation step (m)
-  int levels = 3;           ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
-  int keep = 8;             ///< poses kept per level for the next finer one
-  bool refine = true;       ///< sub-cell refinement of the winner (see refine())
-  double distinct_xy = 0.3;  ///< poses farther apart than this (m) ...
+  double resolution = 0.1;              ///< finest grid cell = translation step (m)
+  int levels = 3;                       ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
+  int keep = 8;                         ///< poses kept per level for the next finer one
+  bool refine = true;                   ///< sub-cell refinement of the winner (see refine())
+  double distinct_xy = 0.3;             ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
 };
 

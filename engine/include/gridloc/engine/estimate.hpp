@@ -8,10 +8,10 @@ namespace gridloc {
 
 /// The search region around a prior (seed 001 §2: +-80 cm, +-45 deg, 10 cm, 5 deg).
 struct SearchWindow {
-  Pose2 center;                       ///< the prior, world frame
-  double half_xy = 0.8;               ///< m
-  double half_theta = 0.785398163397;  ///< rad (45 deg)
-  double step_xy = 0.1;               ///< m; the finest grid's resolution
+  Pose2 center;                         ///< the prior, world frame
+  double half_xy = 0.8;                 ///< m
+  double half_theta = 0.785398163397;   ///< rad (45 deg)
+  double step_xy = 0.1;                 ///< m; the finest grid's resolution
   double step_theta = 0.0872664625997;  ///< rad (5 deg)
 };
 
@@ -25,16 +25,16 @@ struct SearchStats {
   long long poses_scored = 0;  ///< over all levels
   long long cells_scored = 0;  ///< local cells multiplied, over all levels
   int levels = 1;
-  double elapsed_ms = 0.0;     ///< wall time of the whole estimate, grid construction included
+  double elapsed_ms = 0.0;  ///< wall time of the whole estimate, grid construction included
 };
 
 struct Estimate {
-  Pose2 pose;                    ///< best pose after sub-cell refinement, world frame
-  Pose2 lattice_pose;            ///< the search's exact winner on the lattice, world frame
-  double score = 0.0;            ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
-  double normalized_score = 0.0; ///< score / sum |L|: 1 when every local cell matches fully
-  double second_score = 0.0;     ///< best score of a pose distinct from the winner
-  double confidence = 0.0;       ///< (score - second_score) / score, clamped to [0, 1]
+  Pose2 pose;                            ///< best pose after sub-cell refinement, world frame
+  Pose2 lattice_pose;                    ///< the search's exact winner on the lattice, world frame
+  double score = 0.0;                    ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
+  double normalized_score = 0.0;         ///< score / sum |L|: 1 when every local cell matches fully
+  double second_score = 0.0;             ///< best score of a pose distinct from the winner
+  double confidence = 0.0;               ///< (score - second_score) / score, clamped to [0, 1]
   std::vector<Hypothesis> alternatives;  ///< distinct local maxima, best first (winner included)
   SearchStats stats;
 };

@@ -20,19 +20,18 @@ struct EvalConfiguration {
 };
 
 struct EvalOptions {
-  int trials = 100;          ///< per map
+  int trials = 100;  ///< per map
   std::uint64_t seed = 1;
   double clearance_m = 0.25;  ///< free space required around the footprint
   SearchWindow window;        ///< its half sizes perturb the prior; its centre is ignored
   double success_xy = 0.10;
-  double success_theta = 0.122173047640;  ///< 7 deg
+  double success_theta = 0.122173047640;                  ///< 7 deg
   SonarSimOptions noise = SonarSimOptions::realistic(1);  ///< its seed is replaced per trial
   CorrelationOptions search;  ///< its local/global fields are replaced per configuration
-  std::vector<EvalConfiguration> configurations = {
-      {LocalModel::Turned, GlobalModel::Raw},
-      {LocalModel::Turned, GlobalModel::Thinned},
-      {LocalModel::Oriented, GlobalModel::Raw},
-      {LocalModel::Oriented, GlobalModel::Thinned}};
+  std::vector<EvalConfiguration> configurations = {{LocalModel::Turned, GlobalModel::Raw},
+                                                   {LocalModel::Turned, GlobalModel::Thinned},
+                                                   {LocalModel::Oriented, GlobalModel::Raw},
+                                                   {LocalModel::Oriented, GlobalModel::Thinned}};
 };
 
 struct EvalMap {

@@ -12,8 +12,12 @@ inline double normalize_angle(double a) {
   a = std::remainder(a, 2.0 * std::numbers::pi);
   return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
 }
-inline double deg2rad(double d) { return d * std::numbers::pi / 180.0; }
-inline double rad2deg(double r) { return r * 180.0 / std::numbers::pi; }
+inline double deg2rad(double d) {
+  return d * std::numbers::pi / 180.0;
+}
+inline double rad2deg(double r) {
+  return r * 180.0 / std::numbers::pi;
+}
 
 /// A 2-D pose: position in metres, heading in radians.
 struct Pose2 {

@@ -10,7 +10,7 @@ enum class MapMode { Trinary, Scale, Raw };
 
 /// The keys of a map_server YAML file, with map_server's defaults.
 struct MapMetadata {
-  std::string image;  ///< path of the image, relative to the YAML file's folder
+  std::string image;        ///< path of the image, relative to the YAML file's folder
   double resolution = 0.0;  ///< metres per pixel
   Pose2 origin;             ///< world pose of the lower-left pixel's corner (x, y, yaw)
   bool negate = false;

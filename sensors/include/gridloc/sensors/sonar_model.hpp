@@ -22,13 +22,13 @@ struct SonarModelOptions {
 
 /// Rasterizes the readings of `ring` for a robot heading `theta` (rad) into cells of size
 /// `resolution` (m), the robot centre lying `centre` (m) from the centre of cell (0, 0)
-/// (zero on the search lattice; sub-cell offsets serve refinement). Per cone with an echo at range d: the n1 cells of the 8-connected arc
-/// at d get +1/n1 and the n2 cells of the free sector before it get -1/n2; a reading with
-/// no echo (d >= max_range) gives its free sector up to max_range only. The footprint's n
-/// cells get -N/n (N = number of sonars). `options.arc_depth_cells` widens arcs radially.
-/// Overlap rule: an arc cell of any cone stays occupied (arc values of several cones add,
-/// free values on it are dropped); free values of several cones add; the footprint
-/// overrides everything. Readings must have passed validate_readings().
+/// (zero on the search lattice; sub-cell offsets serve refinement). Per cone with an echo at range
+/// d: the n1 cells of the 8-connected arc at d get +1/n1 and the n2 cells of the free sector before
+/// it get -1/n2; a reading with no echo (d >= max_range) gives its free sector up to max_range
+/// only. The footprint's n cells get -N/n (N = number of sonars). `options.arc_depth_cells` widens
+/// arcs radially. Overlap rule: an arc cell of any cone stays occupied (arc values of several cones
+/// add, free values on it are dropped); free values of several cones add; the footprint overrides
+/// everything. Readings must have passed validate_readings().
 SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
                                    double theta, double resolution,
                                    const Eigen::Vector2d& centre = Eigen::Vector2d::Zero(),
