@@ -14,7 +14,8 @@ namespace gridloc::cli {
 namespace {
 
 struct EvalArgs {
-  std::string maps, ring, strategy = "multires", noise = "realistic";
+  std::string maps, ring, strategy = "multires", noise = "realistic", arc_rule = "neutral";
+  double arc_depth = SonarModelOptions{}.arc_depth_cells;
   int trials = 100;
   std::uint64_t seed = 1;
   bool json = false;
@@ -36,6 +37,8 @@ void run(const EvalArgs& a) {
   o.trials = a.trials;
   o.seed = a.seed;
   o.search.strategy = parse_strategy(a.strategy);
+  o.search.arc_rule = parse_arc_rule(a.arc_rule);
+  o.search.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
   if (a.noise == "none") {
     o.noise = SonarSimOptions{};
   } else if (a.noise != "realistic") {
@@ -73,16 +76,23 @@ void run(const EvalArgs& a) {
     }
     nlohmann::json names = nlohmann::json::array();
     for (const auto& m : maps) names.push_back(m.name);
-    std::cout << nlohmann::json{{"trials", report.trials}, {"maps", names},
-                                {"seed", a.seed},          {"strategy", a.strategy},
-                                {"noise", a.noise},        {"configurations", configs}}
+    std::cout << nlohmann::json{{"trials", report.trials},
+                                {"maps", names},
+                                {"seed", a.seed},
+                                {"strategy", a.strategy},
+                                {"noise", a.noise},
+                                {"arc_rule", a.arc_rule},
+                                {"arc_depth_cells", a.arc_depth},
+                                {"configurations", configs}}
                      .dump(2)
               << "\n";
     return;
   }
-  std::printf("seed 001 protocol: %d trials (%zu maps), seed %llu, %s search, %s noise\n",
-              report.trials, maps.size(), static_cast<unsigned long long>(a.seed),
-              a.strategy.c_str(), a.noise.c_str());
+  std::printf(
+      "seed 001 protocol: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
+      "depth %.2g cells\n",
+      report.trials, maps.size(), static_cast<unsigned long long>(a.seed), a.strategy.c_str(),
+      a.noise.c_str(), a.arc_rule.c_str(), a.arc_depth);
   std::printf("%-9s %-8s %9s %14s %16s %10s\n", "local", "global", "success", "mean pos err",
               "mean head err", "median");
   for (const auto& c : report.configurations) {
@@ -107,6 +117,10 @@ void add_eval(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
   cmd->add_option("--strategy", a->strategy, "multires | exhaustive")->capture_default_str();
   cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
+  cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
+      ->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON instead of the table");
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   cmd->callback([a] { run(*a); });

@@ -16,7 +16,8 @@ namespace {
 
 struct LocalizeArgs {
   std::string map, ring, readings, prior;
-  std::string strategy = "multires", local = "oriented", global = "thinned";
+  std::string strategy = "multires", local = "oriented", global = "thinned", arc_rule = "neutral";
+  double arc_depth = SonarModelOptions{}.arc_depth_cells;
   SearchWindow window;
   int levels = 3;
   int repeat = 1;
@@ -34,6 +35,8 @@ void run(const LocalizeArgs& a) {
   o.local = parse_local(a.local);
   o.global = parse_global(a.global);
   o.strategy = parse_strategy(a.strategy);
+  o.arc_rule = parse_arc_rule(a.arc_rule);
+  o.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
   o.resolution = window.step_xy;
   o.levels = a.levels;
   const CorrelationEstimator estimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
@@ -47,6 +50,7 @@ void run(const LocalizeArgs& a) {
   }
   std::sort(ms.begin(), ms.end());
   nlohmann::json j = to_json(e);
+  j["lattice"] = {{"pose", to_json(e.lattice_pose)}, {"score", e.score}};
   j["timing"] = {{"median_ms", ms[ms.size() / 2]},
                  {"min_ms", ms.front()},
                  {"precompute_ms", precompute_ms},
@@ -77,6 +81,10 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
   cmd->add_option("--global", a->global, "global grid: thinned | raw")->capture_default_str();
   cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
+  cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
+      ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "repeat the localization N times for timing")
       ->capture_default_str();
   cmd->callback([a] { run(*a); });

@@ -48,6 +48,23 @@ SearchStrategy parse_strategy(const std::string& s) {
   throw Error("--strategy must be multires or exhaustive, not '" + s + "'");
 }
 
+ArcRule parse_arc_rule(const std::string& s) {
+  if (s == "neutral") return ArcRule::Neutral;
+  if (s == "signed") return ArcRule::Signed;
+  throw Error("--arc-rule must be neutral or signed, not '" + s + "'");
+}
+
+std::string to_string(ArcRule r) {
+  return r == ArcRule::Neutral ? "neutral" : "signed";
+}
+
+double check_arc_depth(double cells) {
+  if (!(cells >= 0.0) || !std::isfinite(cells)) {
+    throw Error("--arc-depth must be a finite number of cells >= 0, got " + std::to_string(cells));
+  }
+  return cells;
+}
+
 std::string data_dir() {
   if (const char* env = std::getenv("GRIDLOC_DATA_DIR")) return env;
   if (std::filesystem::exists(GRIDLOC_SOURCE_MAPS_DIR)) return GRIDLOC_SOURCE_MAPS_DIR;

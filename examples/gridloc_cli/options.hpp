@@ -12,6 +12,10 @@ Pose2 parse_pose(const std::string& text, const std::string& what);
 LocalModel parse_local(const std::string& s);
 GlobalModel parse_global(const std::string& s);
 SearchStrategy parse_strategy(const std::string& s);
+ArcRule parse_arc_rule(const std::string& s);
+std::string to_string(ArcRule r);
+/// Checks --arc-depth (cells, >= 0, finite).
+double check_arc_depth(double cells);
 
 /// Folder of the bundled maps: $GRIDLOC_DATA_DIR, else the source tree's maps/, else the
 /// installed share/gridloc/maps.

@@ -1,0 +1,38 @@
+#!/bin/sh
+# gridloc quick start on Debian 12: installs the missing Debian packages (only those the build
+# needs), builds Release into build/, then runs the demo or the whole test suite.
+#   cmake/quickstart.sh demo   # set up, build, run `gridloc demo` on the bundled map and ring
+#   cmake/quickstart.sh test   # set up, build, run every test (ctest)
+set -eu
+cd "$(dirname "$0")/.."
+
+job=${1:-demo}
+case "$job" in
+  demo | test) ;;
+  *) echo "usage: $0 demo|test" >&2; exit 2 ;;
+esac
+
+packages="cmake make g++ libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev \
+  libgtest-dev libbenchmark-dev libopencv-core-dev libopencv-imgcodecs-dev"
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "== installing:$missing"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo=sudo; fi
+  $sudo apt-get update -qq
+  # shellcheck disable=SC2086  # the list is meant to split
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $missing
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$jobs"
+
+if [ "$job" = demo ]; then
+  ./build/examples/gridloc demo
+else
+  cd build && ctest --output-on-failure -j"$jobs"
+fi
