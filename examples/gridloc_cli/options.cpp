@@ -66,8 +66,16 @@ double check_arc_depth(double cells) {
 }
 
 std::string data_dir() {
+  namespace fs = std::filesystem;
   if (const char* env = std::getenv("GRIDLOC_DATA_DIR")) return env;
-  if (std::filesystem::exists(GRIDLOC_SOURCE_MAPS_DIR)) return GRIDLOC_SOURCE_MAPS_DIR;
+  if (fs::exists(GRIDLOC_SOURCE_MAPS_DIR)) return GRIDLOC_SOURCE_MAPS_DIR;
+  // Installed under any prefix: <prefix>/bin/gridloc finds <prefix>/share/gridloc/maps.
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path beside = exe.parent_path().parent_path() / "share" / "gridloc" / "maps";
+    if (fs::exists(beside)) return beside.string();
+  }
   return GRIDLOC_INSTALL_MAPS_DIR;
 }
 
