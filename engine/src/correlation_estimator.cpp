@@ -57,7 +57,7 @@ void validate(const SearchWindow& w) {
 CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                                            CorrelationOptions options)
     : map_(std::move(map)), ring_(std::move(ring)), options_(options) {
-  validate(ring_);
+  if (!ring_.sonars.empty() || options_.reach_m <= 0.0) validate(ring_);
   if (!(options_.resolution > 0.0) || !std::isfinite(options_.resolution)) {
     throw Error("correlation options: resolution must be > 0, got " +
                 std::to_string(options_.resolution));
@@ -69,18 +69,41 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
 
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
+  if (!(options_.reach_m >= 0.0) || !std::isfinite(options_.reach_m)) {
+    throw Error("correlation options: reach_m must be >= 0, got " +
+                std::to_string(options_.reach_m));
+  }
+  reach_ = std::max(options_.reach_m, ring_.sonars.empty() ? 0.0 : ring_.reach());
   for (int l = 0; l < options_.levels; ++l) {
     const double res = level_resolution(options_.resolution, l);
-    const int pad = static_cast<int>(std::ceil(ring_.reach() / res)) + 3;
+    const int pad = static_cast<int>(std::ceil(reach_ / res)) + 3;
     levels_.push_back(
         pad_grid(make_global_grid(map_, res, options_.global), pad, options_.arc_rule));
   }
 }
 
+CorrelationEstimator::CorrelationEstimator(OccupancyMap map, CorrelationOptions options)
+    : CorrelationEstimator(std::move(map), SonarRing{}, options) {}
+
 Estimate CorrelationEstimator::estimate(const Observation& observation,
                                         const SearchWindow& window) const {
   const auto start = std::chrono::steady_clock::now();
-  validate_readings(ring_, observation.ranges);
+  if (observation.scan) {
+    if (!observation.ranges.empty()) {
+      throw Error("observation: give sonar ranges or a scan, not both");
+    }
+    validate(*observation.scan);
+    if (observation.scan->max_range > reach_ + 1e-9) {
+      std::ostringstream m;
+      m << "scan: max range " << observation.scan->max_range << " m exceeds the estimator's reach "
+        << reach_ << " m (set CorrelationOptions::reach_m)";
+      throw Error(m.str());
+    }
+  } else {
+    if (ring_.sonars.empty())
+      throw Error("observation: this estimator has no sonar ring; give a scan");
+    validate_readings(ring_, observation.ranges);
+  }
   validate(window);
   const double res = options_.resolution;
   if (std::abs(window.step_xy - res) > 1e-9) {
@@ -113,12 +136,11 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   std::vector<SearchLevel> levels;
   const int level_count = options_.strategy == SearchStrategy::Exhaustive ? 1 : options_.levels;
   for (int l = 0; l < level_count; ++l) {
-    const double level_res = level_resolution(res, l);
-    levels.push_back({&levels_[static_cast<std::size_t>(l)],
-                      [&, level_res](double theta, const Eigen::Vector2d& centre) {
-                        return rasterize(ring_, observation.ranges, theta, level_res,
-                                         options_.local, centre, options_.sonar);
-                      }});
+    levels.push_back(
+        {&levels_[static_cast<std::size_t>(l)],
+         [&, level_res = level_resolution(res, l)](double theta, const Eigen::Vector2d& centre) {
+           return local_grid(observation, theta, level_res, centre);
+         }});
   }
   const SearchResult r = options_.strategy == SearchStrategy::Exhaustive
                              ? search_exhaustive(lattice, levels.front())
@@ -136,9 +158,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
     e.pose = to_world(refined.ix, refined.iy, refined.it);
   }
   e.score = r.best.score;
-  const double mass = rasterize(ring_, observation.ranges, lattice.theta(r.best.it), res,
-                                options_.local, Eigen::Vector2d::Zero(), options_.sonar)
-                          .mass();
+  const double mass =
+      local_grid(observation, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero()).mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
   const auto peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
@@ -150,6 +171,15 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   e.stats.elapsed_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return e;
+}
+
+SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation, double theta,
+                                                 double resolution,
+                                                 const Eigen::Vector2d& centre) const {
+  // A scan is a set of rays, oriented by construction; the sonar ring follows options.local.
+  if (observation.scan) return rasterize_scan(*observation.scan, theta, resolution, centre);
+  return rasterize(ring_, observation.ranges, theta, resolution, options_.local, centre,
+                   options_.sonar);
 }
 
 }  // namespace gridloc

@@ -8,6 +8,7 @@
 #include "gridloc/engine/correlation_estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
 #include "options.hpp"
 
@@ -15,7 +16,8 @@ namespace gridloc::cli {
 namespace {
 
 struct LocalizeArgs {
-  std::string map, ring, readings, prior;
+  std::string map, ring, readings, scan, prior;
+  double max_range = 8.0;
   std::string strategy = "multires", local = "oriented", global = "thinned", arc_rule = "neutral";
   double arc_depth = SonarModelOptions{}.arc_depth_cells;
   SearchWindow window;
@@ -28,7 +30,15 @@ void run(const LocalizeArgs& a) {
   if (a.repeat < 1) throw Error("--repeat must be >= 1");
   SearchWindow window = a.window;
   window.center = parse_pose(a.prior, "--prior");
-  const Observation obs{load_readings(a.readings)};
+  if (a.readings.empty() == a.scan.empty()) {
+    throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
+  }
+  Observation obs;
+  if (a.scan.empty()) {
+    obs.ranges = load_readings(a.readings);
+  } else {
+    obs.scan = load_scan_csv(a.scan, a.max_range);
+  }
 
   const auto t0 = clock::now();
   CorrelationOptions o;
@@ -39,7 +49,11 @@ void run(const LocalizeArgs& a) {
   o.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
   o.resolution = window.step_xy;
   o.levels = a.levels;
-  const CorrelationEstimator estimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
+  // A scan needs no ring: the padding covers its max range instead.
+  o.reach_m = obs.scan ? a.max_range : 0.0;
+  const CorrelationEstimator estimator =
+      obs.scan ? CorrelationEstimator(load_ros_map(a.map), o)
+               : CorrelationEstimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
   const double precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
 
   Estimate e;
@@ -67,7 +81,10 @@ void add_localize(CLI::App& app) {
       app.add_subcommand("localize", "Localize from sonar readings and a prior; prints JSON");
   cmd->add_option("--map", a->map, "map_server YAML of the known map")->required();
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--readings", a->readings, "readings JSON {\"ranges_m\": [...]}")->required();
+  cmd->add_option("--readings", a->readings, "sonar readings JSON {\"ranges_m\": [...]}");
+  cmd->add_option("--scan", a->scan, "laser/IR scan CSV: angle_rad,range_m per line");
+  cmd->add_option("--max-range", a->max_range, "scan max range (m); longer ranges are no return")
+      ->capture_default_str();
   cmd->add_option("--prior", a->prior, "prior pose x,y,theta (m, m, rad)")->required();
   cmd->add_option("--window-xy", a->window.half_xy, "half width of the search square (m)")
       ->capture_default_str();

@@ -23,7 +23,10 @@ struct CorrelationOptions {
   int levels = 3;                       ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
   int keep = 8;                         ///< poses kept per level for the next finer one
   bool refine = true;                   ///< sub-cell refinement of the winner (see refine())
-  double distinct_xy = 0.3;             ///< poses farther apart than this (m) ...
+  /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
+  /// reach; set it to a laser's max range to localize scans.
+  double reach_m = 0.0;
+  double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
 };
 
@@ -31,6 +34,8 @@ class CorrelationEstimator final : public Estimator {
  public:
   /// Precomputes the global grid of every level; throws gridloc::Error for bad options or ring.
   CorrelationEstimator(OccupancyMap map, SonarRing ring, CorrelationOptions options = {});
+  /// An estimator for scans only (no sonar ring); options.reach_m must cover the scans' range.
+  CorrelationEstimator(OccupancyMap map, CorrelationOptions options);
 
   /// window.step_xy must equal options().resolution (the translation lattice is the grid).
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
@@ -43,9 +48,14 @@ class CorrelationEstimator final : public Estimator {
   const PaddedGrid& level(int l) const { return levels_.at(static_cast<std::size_t>(l)); }
 
  private:
+  /// The observation's local grid for heading theta (grid frame) at `resolution`.
+  SparseLocalGrid local_grid(const Observation& observation, double theta, double resolution,
+                             const Eigen::Vector2d& centre) const;
+
   OccupancyMap map_;
   SonarRing ring_;
   CorrelationOptions options_;
+  double reach_ = 0.0;  ///< what the padding covers (m)
   std::vector<PaddedGrid> levels_;
 };
 

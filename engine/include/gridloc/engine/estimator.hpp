@@ -3,14 +3,19 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "gridloc/engine/estimate.hpp"
+#include "gridloc/sensors/range_scan.hpp"
 
 namespace gridloc {
 
-/// One observation from the robot standing still: a range per sonar of the ring (m), in
-/// ring order; a sonar's max_range means no echo.
+/// One observation from the robot standing still: either a range per sonar of the ring (m),
+/// in ring order, a sonar's max_range meaning no echo; or, when `scan` is set, a laser or IR
+/// scan (then `ranges` must be empty).
 struct Observation {
   std::vector<double> ranges;
+  std::optional<RangeScan> scan;
 };
 
 class Estimator {

@@ -1,0 +1,160 @@
+#include "gridloc/sensors/range_scan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+/// Cells crossed by the segment from (x0, y0) to (x1, y1), in cell units with cell (i, j)
+/// covering [i - 0.5, i + 0.5) x [j - 0.5, j + 0.5) (the robot centre is a cell centre);
+/// Amanatides-Woo traversal, the end cell excluded.
+template <typename Visit>
+void cells_before(double x0, double y0, double x1, double y1, Visit visit) {
+  int ix = static_cast<int>(std::floor(x0 + 0.5)), iy = static_cast<int>(std::floor(y0 + 0.5));
+  const int ex = static_cast<int>(std::floor(x1 + 0.5)),
+            ey = static_cast<int>(std::floor(y1 + 0.5));
+  const double dx = x1 - x0, dy = y1 - y0;
+  const int sx = dx > 0 ? 1 : -1, sy = dy > 0 ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double tdx = dx != 0 ? 1.0 / std::abs(dx) : inf, tdy = dy != 0 ? 1.0 / std::abs(dy) : inf;
+  double tx = dx != 0 ? ((ix + 0.5 * sx) - x0) / dx : inf;
+  double ty = dy != 0 ? ((iy + 0.5 * sy) - y0) / dy : inf;
+  // At most |ex - ix| + |ey - iy| steps reach the end cell.
+  for (int steps = std::abs(ex - ix) + std::abs(ey - iy); steps > 0; --steps) {
+    visit(ix, iy);
+    if (tx < ty) {
+      tx += tdx;
+      ix += sx;
+    } else {
+      ty += tdy;
+      iy += sy;
+    }
+  }
+}
+
+}  // namespace
+
+void validate(const RangeScan& scan) {
+  if (scan.ranges.empty()) throw Error("scan: no beams");
+  if (scan.angles.size() != scan.ranges.size()) {
+    throw Error("scan: " + std::to_string(scan.angles.size()) + " angles but " +
+                std::to_string(scan.ranges.size()) + " ranges");
+  }
+  if (!(scan.max_range > 0.0) || !std::isfinite(scan.max_range)) {
+    throw Error("scan: max range must be positive and finite, got " +
+                std::to_string(scan.max_range));
+  }
+  bool any_return = false;
+  for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
+    const double a = scan.angles[k], r = scan.ranges[k];
+    if (!std::isfinite(a))
+      throw Error("scan: angle of beam " + std::to_string(k) + " is not finite");
+    if (std::isnan(r)) throw Error("scan: range of beam " + std::to_string(k) + " is NaN");
+    if (r < 0.0) {
+      throw Error("scan: range of beam " + std::to_string(k) + " is negative (" +
+                  std::to_string(r) + ")");
+    }
+    any_return = any_return || r < scan.max_range;
+  }
+  if (!any_return) {
+    throw Error("scan: no beam has a return below the max range " + std::to_string(scan.max_range) +
+                " m; nothing to match");
+  }
+}
+
+RangeScan load_scan_csv(const std::string& path, double max_range) {
+  if (!std::filesystem::exists(path)) throw Error(path + ": scan file not found");
+  std::ifstream in(path);
+  RangeScan scan;
+  scan.max_range = max_range;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    double angle = 0.0, range = 0.0;
+    std::string rest;
+    if (!(fields >> angle >> range) || (fields >> rest)) {
+      throw Error(path + ":" + std::to_string(number) + ": expected 'angle_rad,range_m'");
+    }
+    scan.angles.push_back(angle);
+    scan.ranges.push_back(range);
+  }
+  try {
+    validate(scan);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  return scan;
+}
+
+SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resolution,
+                               const Eigen::Vector2d& centre) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("local grid resolution must be positive, got " + std::to_string(resolution));
+  }
+  // Sparse accumulation keyed by cell: a laser grid is a thin set of rays in a large disc.
+  struct Acc {
+    float free = 0.0f;
+    bool hit = false;
+  };
+  std::unordered_map<long long, Acc> cells;
+  cells.reserve(scan.ranges.size() * 16);
+  auto key = [](int x, int y) {
+    return (static_cast<long long>(y) << 32) ^ static_cast<unsigned>(x);
+  };
+  const double inv = 1.0 / resolution;
+  const double x0 = centre.x() * inv, y0 = centre.y() * inv;
+  std::vector<long long> crossed;
+  for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
+    const bool hit = scan.ranges[k] < scan.max_range;
+    const double r = (hit ? scan.ranges[k] : scan.max_range) * inv;
+    const double a = theta + scan.angles[k];
+    const double x1 = x0 + r * std::cos(a), y1 = y0 + r * std::sin(a);
+    crossed.clear();
+    cells_before(x0, y0, x1, y1, [&](int x, int y) { crossed.push_back(key(x, y)); });
+    if (!crossed.empty()) {
+      const float v = -1.0f / static_cast<float>(crossed.size());
+      for (long long c : crossed) cells[c].free += v;
+    }
+    if (hit) {
+      cells[key(static_cast<int>(std::floor(x1 + 0.5)), static_cast<int>(std::floor(y1 + 0.5)))]
+          .hit = true;
+    }
+  }
+  std::vector<std::pair<long long, float>> sorted;
+  sorted.reserve(cells.size());
+  for (const auto& [k, acc] : cells) {
+    const float v = acc.hit ? 1.0f : acc.free;
+    if (v != 0.0f) sorted.emplace_back(k, v);
+  }
+  // Row-major order: by y, then x (the key's high half is y; compare decoded pairs).
+  auto decode = [](long long k) {
+    return std::pair<int, int>(static_cast<int>(k >> 32),
+                               static_cast<int>(static_cast<unsigned>(k)));
+  };
+  std::sort(sorted.begin(), sorted.end(),
+            [&](const auto& a, const auto& b) { return decode(a.first) < decode(b.first); });
+  SparseLocalGrid g;
+  g.resolution = resolution;
+  g.theta = theta;
+  for (const auto& [k, v] : sorted) {
+    const auto [y, x] = decode(k);
+    g.dx.push_back(x);
+    g.dy.push_back(y);
+    g.value.push_back(v);
+  }
+  return g;
+}
+
+}  // namespace gridloc
