@@ -287,3 +287,72 @@ TEST_F(Estimator, BadOptions) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Scoring headings on several threads must not change a single bit of the answer.
+TEST(CorrelationEstimatorThreads, TwoThreadsGiveTheSameEstimateAsOne) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  for (SearchStrategy strategy : {SearchStrategy::Multires, SearchStrategy::Exhaustive}) {
+    CorrelationOptions one, two;
+    one.strategy = two.strategy = strategy;
+    two.threads = 2;
+    const CorrelationEstimator a(map, ring, one), b(map, ring, two);
+    Rng rng(99);
+    for (int t = 0; t < 5; ++t) {
+      const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
+      const Observation obs{
+          simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()))};
+      SearchWindow w;
+      w.center = {truth.x + 0.3, truth.y - 0.2, truth.theta + 0.2};
+      const Estimate ea = a.estimate(obs, w), eb = b.estimate(obs, w);
+      EXPECT_EQ(ea.score, eb.score);
+      EXPECT_EQ(ea.pose.x, eb.pose.x);
+      EXPECT_EQ(ea.pose.y, eb.pose.y);
+      EXPECT_EQ(ea.pose.theta, eb.pose.theta);
+      EXPECT_EQ(ea.second_score, eb.second_score);
+      EXPECT_EQ(ea.stats.poses_scored, eb.stats.poses_scored);
+      EXPECT_EQ(ea.stats.cells_scored, eb.stats.cells_scored);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Branch and bound is exact: the same lattice winner, score and second distinct score as
+// the exhaustive search, on noisy observations in every room.
+TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  for (const char* name : {"room_rect", "room_l", "room_furnished"}) {
+    const OccupancyMap map = load_ros_map(test::map_path(name));
+    CorrelationOptions exhaustive, bnb;
+    exhaustive.strategy = SearchStrategy::Exhaustive;
+    bnb.strategy = SearchStrategy::BranchAndBound;
+    const CorrelationEstimator a(map, ring, exhaustive), b(map, ring, bnb);
+    Rng rng(7);
+    for (int t = 0; t < 6; ++t) {
+      const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
+      const Observation obs{
+          simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()))};
+      SearchWindow w;
+      w.center = {truth.x - 0.4, truth.y + 0.5, truth.theta - 0.3};
+      const Estimate ea = a.estimate(obs, w), eb = b.estimate(obs, w);
+      EXPECT_EQ(ea.lattice_pose.x, eb.lattice_pose.x) << name << " " << t;
+      EXPECT_EQ(ea.lattice_pose.y, eb.lattice_pose.y) << name << " " << t;
+      EXPECT_EQ(ea.lattice_pose.theta, eb.lattice_pose.theta) << name << " " << t;
+      EXPECT_EQ(ea.score, eb.score) << name << " " << t;
+      EXPECT_EQ(ea.second_score, eb.second_score) << name << " " << t;
+      EXPECT_EQ(ea.pose.x, eb.pose.x) << name << " " << t;
+      EXPECT_LT(eb.stats.poses_scored, ea.stats.poses_scored) << name << " " << t;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gridloc

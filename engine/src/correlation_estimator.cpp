@@ -14,8 +14,17 @@ double level_resolution(double finest, int l) {
   return finest * static_cast<double>(1 << l);
 }
 
-/// Distinct local maxima of the scored poses: best first, each farther than the distinct
-/// radius (position or heading) from every one chosen before.
+/// The neighbourhood of `p` whose poses are not distinct from it: within distinct_xy and
+/// distinct_theta, in lattice units (one definition for every strategy, so that they agree
+/// exactly on the second peak).
+Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
+                        const CorrelationOptions& o) {
+  return {p, o.distinct_xy / res,
+          static_cast<int>(std::floor(o.distinct_theta / step_theta + 1e-9))};
+}
+
+/// Distinct local maxima of the scored poses: best first (ties to the lowest index), each
+/// outside the neighbourhood of every one chosen before.
 std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
                                         double step_theta, const CorrelationOptions& o,
                                         std::size_t max_count) {
@@ -23,9 +32,8 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
                    [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
   std::vector<LatticePose> peaks;
   for (const auto& c : scored) {
-    const bool distinct = std::all_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
-      const double d = res * std::hypot(c.ix - p.ix, c.iy - p.iy);
-      return d > o.distinct_xy || std::abs(c.it - p.it) * step_theta > o.distinct_theta;
+    const bool distinct = std::none_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
+      return neighbourhood(p, res, step_theta, o).contains(c.ix, c.iy, c.it);
     });
     if (distinct) peaks.push_back(c);
     if (peaks.size() == max_count) break;
@@ -67,6 +75,10 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.levels));
   }
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
+  if (options_.threads < 1 || options_.threads > 256) {
+    throw Error("correlation options: threads must be in [1, 256], got " +
+                std::to_string(options_.threads));
+  }
 
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
   if (!(options_.reach_m >= 0.0) || !std::isfinite(options_.reach_m)) {
@@ -79,6 +91,13 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     const int pad = static_cast<int>(std::ceil(reach_ / res)) + 3;
     levels_.push_back(
         pad_grid(make_global_grid(map_, res, options_.global), pad, options_.arc_rule));
+  }
+  if (options_.strategy == SearchStrategy::BranchAndBound) {
+    // Deep enough for a window over the whole map; small windows start lower.
+    const PaddedGrid& finest = levels_.front();
+    int depth = 0;
+    while ((1 << depth) < std::max(finest.width, finest.height)) ++depth;
+    pyramid_ = make_bound_pyramid(finest, depth);
   }
 }
 
@@ -134,7 +153,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   lattice.step_theta = window.step_theta;
 
   std::vector<SearchLevel> levels;
-  const int level_count = options_.strategy == SearchStrategy::Exhaustive ? 1 : options_.levels;
+  const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < level_count; ++l) {
     levels.push_back(
         {&levels_[static_cast<std::size_t>(l)],
@@ -142,9 +161,20 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
            return local_grid(observation, theta, level_res, centre);
          }});
   }
-  const SearchResult r = options_.strategy == SearchStrategy::Exhaustive
-                             ? search_exhaustive(lattice, levels.front())
-                             : search_multires(lattice, levels, options_.keep);
+  SearchResult r;
+  std::vector<PlacedLocalGrid> placed;  // branch and bound: shared by its two searches
+  switch (options_.strategy) {
+    case SearchStrategy::Exhaustive:
+      r = search_exhaustive(lattice, levels.front());
+      break;
+    case SearchStrategy::Multires:
+      r = search_multires(lattice, levels, options_.keep);
+      break;
+    case SearchStrategy::BranchAndBound:
+      placed = place_headings(lattice, levels.front());
+      r = search_branch_and_bound(lattice, levels_.front(), placed, pyramid_);
+      break;
+  }
 
   auto to_world = [&](double ix, double iy, double it) {
     return map_.geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
@@ -161,7 +191,20 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   const double mass =
       local_grid(observation, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero()).mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
-  const auto peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
+  std::vector<LatticePose> peaks;
+  if (options_.strategy == SearchStrategy::BranchAndBound) {
+    // Branch and bound scores few poses: find the best distinct pose exactly, by a second
+    // search that leaves out the winner's neighbourhood.
+    const SearchResult second =
+        search_branch_and_bound(lattice, levels_.front(), placed, pyramid_,
+                                neighbourhood(r.best, res, window.step_theta, options_));
+    peaks.push_back(r.best);
+    if (second.poses_scored > 0) peaks.push_back(second.best);
+    r.poses_scored += second.poses_scored;
+    r.cells_scored += second.cells_scored;
+  } else {
+    peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
+  }
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
   e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
   for (const auto& p : peaks) e.alternatives.push_back({to_world(p.ix, p.iy, p.it), p.score});

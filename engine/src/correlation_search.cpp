@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <tuple>
 
 namespace gridloc {
@@ -22,16 +21,29 @@ bool better(const LatticePose& a, const LatticePose& b) {
 /// Scores `candidates` (sorted by index) on one level, building each heading's grid once.
 void score_all(std::vector<LatticePose>& candidates, const Lattice& lattice,
                const SearchLevel& level, SearchResult& result) {
-  std::optional<int> current;
-  PlacedLocalGrid placed;
-  for (auto& c : candidates) {
-    if (current != c.it) {
-      placed = place(level.make_local(lattice.theta(c.it), Eigen::Vector2d::Zero()), *level.global);
-      current = c.it;
-    }
-    c.score = score(*level.global, placed, c.ix, c.iy);
-    result.cells_scored += static_cast<long long>(placed.value.size());
+  // Candidates are sorted by heading: one group per heading, each built and scored alone,
+  // so any number of threads computes the same scores.
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (k == 0 || candidates[k].it != candidates[k - 1].it) starts.push_back(k);
   }
+  starts.push_back(candidates.size());
+  const auto groups = static_cast<std::ptrdiff_t>(starts.size()) - 1;
+  std::vector<long long> cells(static_cast<std::size_t>(std::max<std::ptrdiff_t>(groups, 0)), 0);
+#pragma omp parallel for schedule(dynamic) num_threads(level.threads) if (level.threads > 1)
+  for (std::ptrdiff_t g = 0; g < groups; ++g) {
+    const auto begin = starts[static_cast<std::size_t>(g)],
+               end = starts[static_cast<std::size_t>(g) + 1];
+    const PlacedLocalGrid placed =
+        place(level.make_local(lattice.theta(candidates[begin].it), Eigen::Vector2d::Zero()),
+              *level.global);
+    for (std::size_t k = begin; k < end; ++k) {
+      candidates[k].score = score(*level.global, placed, candidates[k].ix, candidates[k].iy);
+    }
+    cells[static_cast<std::size_t>(g)] =
+        static_cast<long long>(placed.value.size()) * static_cast<long long>(end - begin);
+  }
+  for (long long c : cells) result.cells_scored += c;
   result.poses_scored += static_cast<long long>(candidates.size());
 }
 

@@ -17,6 +17,7 @@ struct EvalArgs {
   std::string maps, ring, strategy = "multires", noise = "realistic", arc_rule = "neutral";
   double arc_depth = SonarModelOptions{}.arc_depth_cells;
   int trials = 100;
+  int threads = 1;
   std::uint64_t seed = 1;
   bool json = false;
   bool quiet = false;
@@ -37,6 +38,7 @@ void run(const EvalArgs& a) {
   o.trials = a.trials;
   o.seed = a.seed;
   o.search.strategy = parse_strategy(a.strategy);
+  o.search.threads = a.threads;
   o.search.arc_rule = parse_arc_rule(a.arc_rule);
   o.search.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
   if (a.noise == "none") {
@@ -115,11 +117,14 @@ void add_eval(CLI::App& app) {
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
   cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
-  cmd->add_option("--strategy", a->strategy, "multires | exhaustive")->capture_default_str();
+  cmd->add_option("--strategy", a->strategy, "multires | exhaustive | bnb (exact, fast)")
+      ->capture_default_str();
   cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
   cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
       ->capture_default_str();
   cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--threads", a->threads, "threads per localization (same results)")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON instead of the table");
   cmd->add_flag("--quiet", a->quiet, "no progress line");

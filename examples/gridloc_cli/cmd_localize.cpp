@@ -23,6 +23,7 @@ struct LocalizeArgs {
   SearchWindow window;
   int levels = 3;
   int repeat = 1;
+  int threads = 1;
 };
 
 void run(const LocalizeArgs& a) {
@@ -49,6 +50,7 @@ void run(const LocalizeArgs& a) {
   o.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
   o.resolution = window.step_xy;
   o.levels = a.levels;
+  o.threads = a.threads;
   // A scan needs no ring: the padding covers its max range instead.
   o.reach_m = obs.scan ? a.max_range : 0.0;
   const CorrelationEstimator estimator =
@@ -94,13 +96,16 @@ void add_localize(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")
       ->capture_default_str();
-  cmd->add_option("--strategy", a->strategy, "multires | exhaustive")->capture_default_str();
+  cmd->add_option("--strategy", a->strategy, "multires | exhaustive | bnb (exact, fast)")
+      ->capture_default_str();
   cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
   cmd->add_option("--global", a->global, "global grid: thinned | raw")->capture_default_str();
   cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
   cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
       ->capture_default_str();
   cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--threads", a->threads, "threads scoring headings in parallel (same result)")
       ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

@@ -45,7 +45,8 @@ GlobalModel parse_global(const std::string& s) {
 SearchStrategy parse_strategy(const std::string& s) {
   if (s == "multires") return SearchStrategy::Multires;
   if (s == "exhaustive") return SearchStrategy::Exhaustive;
-  throw Error("--strategy must be multires or exhaustive, not '" + s + "'");
+  if (s == "bnb") return SearchStrategy::BranchAndBound;
+  throw Error("--strategy must be multires, exhaustive or bnb, not '" + s + "'");
 }
 
 ArcRule parse_arc_rule(const std::string& s) {

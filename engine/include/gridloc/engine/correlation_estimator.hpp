@@ -3,6 +3,7 @@
 /// contour-thinned global grid by a multiresolution translation x rotation search.
 #include <vector>
 
+#include "gridloc/engine/branch_and_bound.hpp"
 #include "gridloc/engine/correlation_search.hpp"
 #include "gridloc/engine/estimator.hpp"
 #include "gridloc/grids/evidence.hpp"
@@ -11,7 +12,9 @@
 
 namespace gridloc {
 
-enum class SearchStrategy { Exhaustive, Multires };
+/// Exhaustive and BranchAndBound are exact (the same winner, ties to the lowest index);
+/// Multires (seed 001 §2) is fast but may miss the winner when a coarse level misleads it.
+enum class SearchStrategy { Exhaustive, Multires, BranchAndBound };
 
 struct CorrelationOptions {
   LocalModel local = LocalModel::Oriented;    ///< oriented (seed 001 §3) or turned (baseline)
@@ -22,7 +25,8 @@ struct CorrelationOptions {
   double resolution = 0.1;              ///< finest grid cell = translation step (m)
   int levels = 3;                       ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
   int keep = 8;                         ///< poses kept per level for the next finer one
-  bool refine = true;                   ///< sub-cell refinement of the winner (see refine())
+  int threads = 1;     ///< OpenMP threads for scoring (headings in parallel); same result
+  bool refine = true;  ///< sub-cell refinement of the winner (see refine())
   /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
   /// reach; set it to a laser's max range to localize scans.
   double reach_m = 0.0;
@@ -57,6 +61,7 @@ class CorrelationEstimator final : public Estimator {
   CorrelationOptions options_;
   double reach_ = 0.0;  ///< what the padding covers (m)
   std::vector<PaddedGrid> levels_;
+  BoundPyramid pyramid_;  ///< of levels_[0], built for SearchStrategy::BranchAndBound
 };
 
 /// Checks a window; throws gridloc::Error naming the field.

@@ -88,6 +88,8 @@ struct Lattice {
 struct SearchLevel {
   const PaddedGrid* global = nullptr;
   std::function<SparseLocalGrid(double theta, const Eigen::Vector2d& centre)> make_local;
+  int threads = 1;  ///< OpenMP threads scoring this level, one heading per task (thread-safe
+                    ///< make_local required); results do not depend on it
 };
 
 struct SearchResult {

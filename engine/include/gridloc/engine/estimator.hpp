@@ -15,7 +15,7 @@ namespace gridloc {
 /// scan (then `ranges` must be empty).
 struct Observation {
   std::vector<double> ranges;
-  std::optional<RangeScan> scan;
+  std::optional<RangeScan> scan = std::nullopt;
 };
 
 class Estimator {

@@ -1,0 +1,20 @@
+#pragma once
+/// Max / min pooling of a grid over square blocks: the bound grids of an exact
+/// branch-and-bound search (DESIGN.md, "Global grid").
+#include "gridloc/grids/grid.hpp"
+
+namespace gridloc {
+
+/// Cell (x, y) of the result = max of g over the block [x, x + size) x [y, y + size), clipped
+/// at the grid's edge; same geometry as g. O(cells) whatever `size`: a separable sliding-window
+/// maximum (van Herk / Gil-Werman). Throws gridloc::Error if size < 1.
+Grid<float> max_pool(const Grid<float>& g, int size);
+/// As max_pool, with the minimum.
+Grid<float> min_pool(const Grid<float>& g, int size);
+
+/// Plain O(cells * size^2) loops computing what max_pool does: the oracle for tests.
+Grid<float> max_pool_reference(const Grid<float>& g, int size);
+/// Plain O(cells * size^2) loops computing what min_pool does: the oracle for tests.
+Grid<float> min_pool_reference(const Grid<float>& g, int size);
+
+}  // namespace gridloc

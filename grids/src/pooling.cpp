@@ -1,0 +1,146 @@
+#include "gridloc/grids/pooling.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+struct Max {
+  static float apply(float a, float b) { return std::max(a, b); }
+};
+struct Min {
+  static float apply(float a, float b) { return std::min(a, b); }
+};
+
+void check_size(int size, const char* what) {
+  if (size < 1)
+    throw Error(std::string(what) + ": block size must be >= 1, got " + std::to_string(size));
+}
+
+// van Herk / Gil-Werman along one axis: split the axis into blocks [jk, jk + k); `pre` holds
+// the running Op from each block's start, `suf` the running Op to each block's end. A window
+// [i, i + k) that fits in the axis meets at most two blocks, so its Op is
+// Op(suf[i], pre[i + k - 1]); a window clipped by the axis end is a plain suffix Op. Three
+// Op per cell whatever k. The column pass works on whole rows so both passes stream memory.
+
+/// Pools every row of `in` (w x h) into `out` over [x, x + k).
+template <class Op>
+void pool_rows(const float* in, float* out, int w, int h, int k, std::vector<float>& pre,
+               std::vector<float>& suf) {
+  pre.resize(static_cast<std::size_t>(w));
+  suf.resize(static_cast<std::size_t>(w));
+  const int full = std::max(0, w - k + 1);  // windows [x, x + k) that fit in the row
+  for (int y = 0; y < h; ++y) {
+    const float* a = in + static_cast<std::ptrdiff_t>(y) * w;
+    float* o = out + static_cast<std::ptrdiff_t>(y) * w;
+    for (int x = 0, r = 0; x < w; ++x, r = (r + 1 == k ? 0 : r + 1)) {
+      pre[x] = r == 0 ? a[x] : Op::apply(pre[x - 1], a[x]);
+    }
+    for (int x = w - 1; x >= 0; --x) {
+      const bool block_end = (x + 1) % k == 0 || x == w - 1;
+      suf[x] = block_end ? a[x] : Op::apply(a[x], suf[x + 1]);
+    }
+    for (int x = 0; x < full; ++x) o[x] = Op::apply(suf[x], pre[x + k - 1]);
+    for (int x = w - 1; x >= full; --x) o[x] = x == w - 1 ? a[x] : Op::apply(a[x], o[x + 1]);
+  }
+}
+
+/// Pools every column of `in` (w x h) into `out` over [y, y + k), whole rows at a time.
+template <class Op>
+void pool_columns(const float* in, float* out, int w, int h, int k, std::vector<float>& pre,
+                  std::vector<float>& suf) {
+  const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  pre.resize(n);
+  suf.resize(n);
+  auto row = [w](auto* base, int y) { return base + static_cast<std::ptrdiff_t>(y) * w; };
+  for (int y = 0, r = 0; y < h; ++y, r = (r + 1 == k ? 0 : r + 1)) {
+    const float* a = row(in, y);
+    float* p = row(pre.data(), y);
+    if (r == 0) {
+      std::copy(a, a + w, p);
+    } else {
+      const float* q = row(pre.data(), y - 1);
+      for (int x = 0; x < w; ++x) p[x] = Op::apply(q[x], a[x]);
+    }
+  }
+  for (int y = h - 1; y >= 0; --y) {
+    const float* a = row(in, y);
+    float* s = row(suf.data(), y);
+    if ((y + 1) % k == 0 || y == h - 1) {
+      std::copy(a, a + w, s);
+    } else {
+      const float* q = row(suf.data(), y + 1);
+      for (int x = 0; x < w; ++x) s[x] = Op::apply(a[x], q[x]);
+    }
+  }
+  const int full = std::max(0, h - k + 1);
+  for (int y = 0; y < full; ++y) {
+    const float* s = row(suf.data(), y);
+    const float* p = row(pre.data(), y + k - 1);
+    float* o = row(out, y);
+    for (int x = 0; x < w; ++x) o[x] = Op::apply(s[x], p[x]);
+  }
+  for (int y = h - 1; y >= full; --y) {
+    const float* a = row(in, y);
+    float* o = row(out, y);
+    if (y == h - 1) {
+      std::copy(a, a + w, o);
+    } else {
+      const float* q = row(out, y + 1);
+      for (int x = 0; x < w; ++x) o[x] = Op::apply(a[x], q[x]);
+    }
+  }
+}
+
+template <class Op>
+Grid<float> pool(const Grid<float>& g, int size) {
+  Grid<float> rows(g.geometry, 0.0f), out(g.geometry, 0.0f);
+  if (g.cells.empty()) return out;
+  std::vector<float> pre, suf;
+  pool_rows<Op>(g.cells.data(), rows.cells.data(), g.width(), g.height(), size, pre, suf);
+  pool_columns<Op>(rows.cells.data(), out.cells.data(), g.width(), g.height(), size, pre, suf);
+  return out;
+}
+
+template <class Op>
+Grid<float> pool_reference(const Grid<float>& g, int size) {
+  Grid<float> out(g.geometry, 0.0f);
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      float v = g.at(x, y);
+      for (int yy = y; yy < std::min(y + size, g.height()); ++yy) {
+        for (int xx = x; xx < std::min(x + size, g.width()); ++xx) v = Op::apply(v, g.at(xx, yy));
+      }
+      out.at(x, y) = v;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Grid<float> max_pool(const Grid<float>& g, int size) {
+  check_size(size, "max_pool");
+  return pool<Max>(g, size);
+}
+
+Grid<float> min_pool(const Grid<float>& g, int size) {
+  check_size(size, "min_pool");
+  return pool<Min>(g, size);
+}
+
+Grid<float> max_pool_reference(const Grid<float>& g, int size) {
+  check_size(size, "max_pool_reference");
+  return pool_reference<Max>(g, size);
+}
+
+Grid<float> min_pool_reference(const Grid<float>& g, int size) {
+  check_size(size, "min_pool_reference");
+  return pool_reference<Min>(g, size);
+}
+
+}  // namespace gridloc

@@ -1,0 +1,489 @@
+// Tests of engine/src/branch_and_bound.cpp: block bounds against exact scores, and the
+// branch-and-bound search against search_exhaustive, exactly (pose and score bit for bit),
+// on random grids, local grids and lattices with fixed seeds, and on grids made of ties.
+#include "gridloc/engine/branch_and_bound.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+int uniform_int(std::mt19937& rng, int lo, int hi) {  // inclusive; portable, unlike <random>'s
+  return lo + static_cast<int>(rng() % static_cast<unsigned>(hi - lo + 1));
+}
+float uniform_float(std::mt19937& rng, float lo, float hi) {
+  return lo + (hi - lo) * static_cast<float>(static_cast<double>(rng()) / 4294967296.0);
+}
+
+constexpr ArcRule kRules[] = {ArcRule::Neutral, ArcRule::Signed};
+
+enum class GridKind { Ternary, Floats, Zero, Constant, Sparse, Periodic, Count };
+
+EvidenceGrid make_grid(std::mt19937& rng, int w, int h, GridKind kind) {
+  GridGeometry geo;
+  geo.width = w;
+  geo.height = h;
+  EvidenceGrid g(geo, 0.0f);
+  switch (kind) {
+    case GridKind::Ternary:
+      for (float& v : g.cells) v = static_cast<float>(uniform_int(rng, -1, 1));
+      break;
+    case GridKind::Floats:
+      for (float& v : g.cells) v = uniform_float(rng, -1.0f, 1.0f);
+      break;
+    case GridKind::Zero:
+    case GridKind::Count:
+      break;
+    case GridKind::Constant: {
+      const float c = std::array<float, 4>{1.0f, -1.0f, 0.5f, 0.3f}[rng() % 4];
+      for (float& v : g.cells) v = c;
+      break;
+    }
+    case GridKind::Sparse:  // like a thinned map: a few occupied cells, some free, mostly unknown
+      for (float& v : g.cells) {
+        const int r = uniform_int(rng, 0, 9);
+        v = r == 0 ? 1.0f : (r <= 3 ? -1.0f : 0.0f);
+      }
+      break;
+    case GridKind::Periodic: {  // a small tile repeated: equal scores at many translations
+      const int px = uniform_int(rng, 1, 4), py = uniform_int(rng, 1, 4);
+      std::vector<float> tile(static_cast<std::size_t>(px * py));
+      for (float& v : tile) v = static_cast<float>(uniform_int(rng, -1, 1));
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x)
+          g.at(x, y) = tile[static_cast<std::size_t>((y % py) * px + x % px)];
+      }
+      break;
+    }
+  }
+  return g;
+}
+
+/// `n` distinct cells within `extent`, sorted by (dy, dx), mixed signs. Values: +-1 (many
+/// ties), the sonar model's +-1/k, or arbitrary floats.
+SparseLocalGrid make_local(std::mt19937& rng, int n, int extent, int value_kind) {
+  const int side = 2 * extent + 1;
+  n = std::min(n, side * side);
+  std::set<std::pair<int, int>> cells;  // (dy, dx)
+  while (static_cast<int>(cells.size()) < n) {
+    cells.insert({uniform_int(rng, -extent, extent), uniform_int(rng, -extent, extent)});
+  }
+  SparseLocalGrid l;
+  for (const auto& [dy, dx] : cells) {
+    l.dx.push_back(dx);
+    l.dy.push_back(dy);
+    const float sign = uniform_int(rng, 0, 9) < 4 ? 1.0f : -1.0f;
+    float v = sign;
+    if (value_kind == 1) v = sign / static_cast<float>(uniform_int(rng, 1, 23));
+    if (value_kind == 2) v = sign * uniform_float(rng, 0.01f, 2.0f);
+    l.value.push_back(v);
+  }
+  return l;
+}
+
+Lattice make_lattice(std::mt19937& rng, int w, int h, int headings) {
+  Lattice lat;
+  lat.headings = headings;
+  lat.theta0 = 0.0;
+  lat.step_theta = 1.0;  // heading index it has theta = it: make_local picks locals[it]
+  switch (uniform_int(rng, 0, 4)) {
+    case 0:  // the whole map
+      lat.x0 = 0, lat.x1 = w - 1, lat.y0 = 0, lat.y1 = h - 1;
+      break;
+    case 1:  // a single cell
+      lat.x0 = lat.x1 = uniform_int(rng, 0, w - 1);
+      lat.y0 = lat.y1 = uniform_int(rng, 0, h - 1);
+      break;
+    case 2: {  // a +-r window around a cell, clipped at the map's edge
+      const int r = uniform_int(rng, 0, 12);
+      const int cx = uniform_int(rng, 0, w - 1), cy = uniform_int(rng, 0, h - 1);
+      lat.x0 = std::max(0, cx - r), lat.x1 = std::min(w - 1, cx + r);
+      lat.y0 = std::max(0, cy - r), lat.y1 = std::min(h - 1, cy + r);
+      break;
+    }
+    default:  // any sub-rectangle
+      lat.x0 = uniform_int(rng, 0, w - 1), lat.x1 = uniform_int(rng, lat.x0, w - 1);
+      lat.y0 = uniform_int(rng, 0, h - 1), lat.y1 = uniform_int(rng, lat.y0, h - 1);
+      break;
+  }
+  return lat;
+}
+
+SearchLevel level_of(const PaddedGrid& padded, const std::vector<SparseLocalGrid>& locals) {
+  return {&padded, [&locals](double theta, const auto&...) {
+            return locals[static_cast<std::size_t>(std::lround(theta))];
+          }};
+}
+
+/// Runs both searches and checks they agree exactly; returns the branch-and-bound result.
+SearchResult expect_same_as_exhaustive(const Lattice& lat, const SearchLevel& level,
+                                       const BoundPyramid& pyramid, const std::string& what) {
+  const SearchResult e = search_exhaustive(lat, level);
+  const SearchResult b = search_branch_and_bound(lat, level, pyramid);
+  EXPECT_EQ(b.best.ix, e.best.ix) << what;
+  EXPECT_EQ(b.best.iy, e.best.iy) << what;
+  EXPECT_EQ(b.best.it, e.best.it) << what;
+  EXPECT_EQ(b.best.score, e.best.score) << what;
+  // Leaves are lattice poses scored exactly as exhaustive scores them, each once.
+  const int nx = lat.x1 - lat.x0 + 1, ny = lat.y1 - lat.y0 + 1;
+  EXPECT_EQ(b.poses_scored, static_cast<long long>(b.scored.size())) << what;
+  EXPECT_LE(b.poses_scored, e.poses_scored) << what;
+  std::vector<char> seen(e.scored.size(), 0);
+  for (const auto& p : b.scored) {
+    EXPECT_TRUE(p.ix >= lat.x0 && p.ix <= lat.x1 && p.iy >= lat.y0 && p.iy <= lat.y1 && p.it >= 0 &&
+                p.it < lat.headings)
+        << what;
+    const auto k =
+        (static_cast<std::size_t>(p.it) * ny + static_cast<std::size_t>(p.iy - lat.y0)) * nx +
+        static_cast<std::size_t>(p.ix - lat.x0);
+    if (k >= e.scored.size()) continue;
+    EXPECT_EQ(p.score, e.scored[k].score) << what;
+    EXPECT_FALSE(seen[k]) << what << ": pose scored twice";
+    seen[k] = 1;
+  }
+  return b;
+}
+
+TEST(BoundPyramid, LevelsArePooledGridsWithThePaddedGeometry) {
+  std::mt19937 rng(11);
+  const EvidenceGrid g = make_grid(rng, 9, 7, GridKind::Floats);
+  const PaddedGrid padded = pad_grid(g, 3, ArcRule::Neutral);
+  const BoundPyramid p = make_bound_pyramid(padded, 3);
+  ASSERT_EQ(p.depth(), 3);
+  EXPECT_TRUE(p.arc_max[0].cells.empty());
+  EXPECT_TRUE(p.grid_min[0].cells.empty());
+  EXPECT_EQ(p.pad, 3);
+  EXPECT_EQ(p.width, 9);
+  EXPECT_EQ(p.height, 7);
+  const int w = padded.grid.width(), h = padded.grid.height();
+  for (int level = 1; level <= 3; ++level) {
+    const auto& mx = p.arc_max[static_cast<std::size_t>(level)];
+    const auto& mn = p.grid_min[static_cast<std::size_t>(level)];
+    ASSERT_EQ(mx.width(), w);
+    ASSERT_EQ(mn.height(), h);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        float hi = -1e30f, lo = 1e30f;
+        for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
+          for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
+            hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
+            lo = std::min(lo, padded.grid.at(xx, yy));
+          }
+        }
+        EXPECT_EQ(mx.at(x, y), hi);
+        EXPECT_EQ(mn.at(x, y), lo);
+      }
+    }
+  }
+  EXPECT_EQ(make_bound_pyramid(padded, 0).depth(), 0);
+  EXPECT_THROW(make_bound_pyramid(padded, -1), Error);
+}
+
+TEST(BoundDepthFor, CoversTheLatticeInOneBlock) {
+  Lattice lat;
+  lat.x0 = 3, lat.x1 = 3, lat.y0 = 5, lat.y1 = 5;
+  EXPECT_EQ(bound_depth_for(lat), 0);
+  lat.x1 = 4;
+  EXPECT_EQ(bound_depth_for(lat), 1);
+  lat.x1 = 19;  // 17 columns
+  EXPECT_EQ(bound_depth_for(lat), 5);
+  lat.x1 = 18, lat.y1 = 45;  // 41 rows
+  EXPECT_EQ(bound_depth_for(lat), 6);
+}
+
+TEST(BlockBound, BoundsEveryPoseOfItsBlockExactly) {
+  std::mt19937 rng(7);
+  long long checked = 0;
+  for (int c = 0; c < 60; ++c) {
+    const int w = uniform_int(rng, 1, 24), h = uniform_int(rng, 1, 24);
+    const auto kind = static_cast<GridKind>(c % static_cast<int>(GridKind::Count));
+    const EvidenceGrid g = make_grid(rng, w, h, kind);
+    const int extent = uniform_int(rng, 0, 8);
+    const SparseLocalGrid l = make_local(rng, uniform_int(rng, 1, 40), extent, c % 3);
+    for (ArcRule rule : kRules) {
+      const PaddedGrid padded = pad_grid(g, extent + uniform_int(rng, 0, 2), rule);
+      const PlacedLocalGrid placed = place(l, padded);
+      const BoundPyramid p = make_bound_pyramid(padded, 4);
+      for (int level = 1; level <= 4; ++level) {
+        const int side = 1 << level;
+        for (int by = 0; by < h; ++by) {
+          for (int bx = 0; bx < w; ++bx) {
+            const double bound = block_bound(p, placed, level, bx, by);
+            for (int y = by; y < std::min(h, by + side); ++y) {
+              for (int x = bx; x < std::min(w, bx + side); ++x) {
+                ASSERT_GE(bound, score(padded, placed, x, y))
+                    << "case " << c << " level " << level << " block (" << bx << ", " << by
+                    << ") pose (" << x << ", " << y << ")";
+                ++checked;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 100000);
+}
+
+TEST(SearchBranchAndBound, EqualsExhaustiveOnRandomCases) {
+  std::mt19937 rng(2025);
+  int compared = 0;
+  for (int c = 0; c < 400; ++c) {
+    const int w = uniform_int(rng, 1, c % 10 == 0 ? 48 : 26);
+    const int h = uniform_int(rng, 1, c % 10 == 0 ? 48 : 26);
+    const auto kind = static_cast<GridKind>(c % static_cast<int>(GridKind::Count));
+    const EvidenceGrid g = make_grid(rng, w, h, kind);
+    const int headings = c % 4 == 0 ? 1 : uniform_int(rng, 1, 5);
+    const int value_kind = uniform_int(rng, 0, 2);
+    std::vector<SparseLocalGrid> locals;
+    int extent = 0;
+    for (int it = 0; it < headings; ++it) {
+      const int n = c % 37 == 0 ? 0 : uniform_int(rng, 1, 48);
+      locals.push_back(make_local(rng, n, uniform_int(rng, 0, 10), value_kind));
+      extent = std::max(extent, locals.back().extent());
+    }
+    const Lattice lat = make_lattice(rng, w, h, headings);
+    const int depth = uniform_int(rng, 0, bound_depth_for(lat) + 1);
+    for (ArcRule rule : kRules) {
+      const PaddedGrid padded = pad_grid(g, extent + uniform_int(rng, 0, 2), rule);
+      const BoundPyramid pyramid = make_bound_pyramid(padded, depth);
+      const std::string what = "case " + std::to_string(c) + " rule " +
+                               std::to_string(static_cast<int>(rule)) + " depth " +
+                               std::to_string(depth);
+      SearchLevel level = level_of(padded, locals);
+      level.threads = c % 3 == 0 ? 2 : 1;  // results never depend on it
+      expect_same_as_exhaustive(lat, level, pyramid, what);
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 800);
+}
+
+TEST(SearchBranchAndBound, ExclusionGivesTheBestPoseOutsideIt) {
+  std::mt19937 rng(77);
+  for (int c = 0; c < 200; ++c) {
+    const int w = uniform_int(rng, 2, 30), h = uniform_int(rng, 2, 30);
+    const EvidenceGrid g =
+        make_grid(rng, w, h, static_cast<GridKind>(c % static_cast<int>(GridKind::Count)));
+    const int headings = uniform_int(rng, 1, 5);
+    std::vector<SparseLocalGrid> locals;
+    int extent = 0;
+    for (int it = 0; it < headings; ++it) {
+      locals.push_back(make_local(rng, uniform_int(rng, 1, 40), uniform_int(rng, 0, 8), 1));
+      extent = std::max(extent, locals.back().extent());
+    }
+    const Lattice lat = make_lattice(rng, w, h, headings);
+    const PaddedGrid padded = pad_grid(g, extent, ArcRule::Neutral);
+    const BoundPyramid pyramid = make_bound_pyramid(padded, bound_depth_for(lat));
+    const SearchLevel level = level_of(padded, locals);
+    const SearchResult all = search_exhaustive(lat, level);
+    const Exclusion ex{all.best, uniform_int(rng, 0, 6) + 0.5, uniform_int(rng, 0, 2)};
+    // The oracle: the exhaustive best among poses outside the exclusion.
+    std::optional<LatticePose> expected;
+    for (const auto& p : all.scored) {
+      if (ex.contains(p.ix, p.iy, p.it)) continue;
+      if (!expected || p.score > expected->score) expected = p;  // scan order = index order
+    }
+    const SearchResult b = search_branch_and_bound(lat, level, pyramid, ex);
+    if (!expected) {
+      EXPECT_EQ(b.poses_scored, 0) << c;
+      continue;
+    }
+    ASSERT_GT(b.poses_scored, 0) << c;
+    EXPECT_EQ(b.best.ix, expected->ix) << c;
+    EXPECT_EQ(b.best.iy, expected->iy) << c;
+    EXPECT_EQ(b.best.it, expected->it) << c;
+    EXPECT_EQ(b.best.score, expected->score) << c;
+    for (const auto& p : b.scored) EXPECT_FALSE(ex.contains(p.ix, p.iy, p.it)) << c;
+  }
+}
+
+TEST(SearchBranchAndBound, AllZeroGridGoesToTheFirstPoseAndPrunesTheRest) {
+  std::mt19937 rng(3);
+  GridGeometry geo;
+  geo.width = 40;
+  geo.height = 30;
+  const EvidenceGrid g(geo, 0.0f);
+  std::vector<SparseLocalGrid> locals;
+  for (int it = 0; it < 4; ++it) locals.push_back(make_local(rng, 30, 6, 1));
+  Lattice lat;
+  lat.x0 = 5, lat.x1 = 39, lat.y0 = 2, lat.y1 = 29;  // clipped at the right and top edges
+  lat.headings = 4;
+  lat.step_theta = 1.0;
+  for (ArcRule rule : kRules) {
+    const PaddedGrid padded = pad_grid(g, 6, rule);
+    const SearchResult r = expect_same_as_exhaustive(lat, level_of(padded, locals),
+                                                     make_bound_pyramid(padded, 6), "zero grid");
+    EXPECT_EQ(r.best.ix, 5);
+    EXPECT_EQ(r.best.iy, 2);
+    EXPECT_EQ(r.best.it, 0);
+    EXPECT_EQ(r.best.score, 0.0);
+    // Every bound equals the first pose's score; only blocks holding a lower index are opened.
+    EXPECT_LE(r.poses_scored, 4);
+  }
+}
+
+TEST(SearchBranchAndBound, ConstantGridTiesGoToTheLowestIndex) {
+  GridGeometry geo;
+  geo.width = 20;
+  geo.height = 20;
+  const EvidenceGrid g(geo, 1.0f);
+  SparseLocalGrid l;  // the same grid for every heading: every pose scores alike
+  l.dx = {-1, 0, 2, 1};
+  l.dy = {-2, 0, 0, 3};
+  l.value = {0.25f, 1.0f, 0.5f, 1.0f / 3.0f};
+  const std::vector<SparseLocalGrid> locals(3, l);
+  Lattice lat;
+  lat.x0 = 3, lat.x1 = 16, lat.y0 = 3, lat.y1 = 16;
+  lat.headings = 3;
+  lat.step_theta = 1.0;
+  for (ArcRule rule : kRules) {
+    const PaddedGrid padded = pad_grid(g, 3, rule);
+    const SearchResult r = expect_same_as_exhaustive(lat, level_of(padded, locals),
+                                                     make_bound_pyramid(padded, 4), "constant");
+    EXPECT_EQ(r.best.ix, 3);
+    EXPECT_EQ(r.best.iy, 3);
+    EXPECT_EQ(r.best.it, 0);
+  }
+}
+
+TEST(SearchBranchAndBound, RepeatedPeaksGoToTheLowestIndex) {
+  // +1 every 5 cells in x and 3 in y; a one-cell local grid scores 1 on each of them. The
+  // lowest (it, iy, ix) peak is on heading 1 (heading 0 scores nothing).
+  GridGeometry geo;
+  geo.width = 33;
+  geo.height = 27;
+  EvidenceGrid g(geo, 0.0f);
+  for (int y = 1; y < 27; y += 3) {
+    for (int x = 2; x < 33; x += 5) g.at(x, y) = 1.0f;
+  }
+  SparseLocalGrid none, one;
+  one.dx = {0};
+  one.dy = {0};
+  one.value = {1.0f};
+  const std::vector<SparseLocalGrid> locals = {none, one, one};
+  Lattice lat;
+  lat.x0 = 4, lat.x1 = 32, lat.y0 = 5, lat.y1 = 26;
+  lat.headings = 3;
+  lat.step_theta = 1.0;
+  for (int depth = 0; depth <= 6; ++depth) {
+    const PaddedGrid padded = pad_grid(g, 1);
+    const SearchResult r =
+        expect_same_as_exhaustive(lat, level_of(padded, locals), make_bound_pyramid(padded, depth),
+                                  "peaks depth " + std::to_string(depth));
+    EXPECT_EQ(r.best.ix, 7);
+    EXPECT_EQ(r.best.iy, 7);
+    EXPECT_EQ(r.best.it, 1);
+    EXPECT_EQ(r.best.score, 1.0);
+  }
+}
+
+TEST(SearchBranchAndBound, ScoresFewPosesOnAStructuredMap) {
+  // Rooms: +1 contours around free (-1) interiors. Each heading's local grid is a patch of
+  // the map around a true pose (with cells dropped), so one pose clearly wins.
+  std::mt19937 rng(99);
+  GridGeometry geo;
+  geo.width = 96;
+  geo.height = 96;
+  EvidenceGrid g(geo, 0.0f);
+  for (int r = 0; r < 12; ++r) {
+    const int x0 = uniform_int(rng, 2, 70), y0 = uniform_int(rng, 2, 70);
+    const int x1 = x0 + uniform_int(rng, 5, 22), y1 = y0 + uniform_int(rng, 5, 22);
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const bool edge = x == x0 || x == x1 || y == y0 || y == y1;
+        if (edge) {
+          g.at(x, y) = 1.0f;
+        } else if (g.at(x, y) == 0.0f) {
+          g.at(x, y) = -1.0f;
+        }
+      }
+    }
+  }
+  const int tx = 40, ty = 45;
+  std::vector<SparseLocalGrid> locals;
+  for (int it = 0; it < 6; ++it) {
+    SparseLocalGrid l;
+    for (int dy = -10; dy <= 10; ++dy) {
+      for (int dx = -10; dx <= 10; ++dx) {
+        const float v = g.at(tx + dx, ty + dy);
+        if (v == 0.0f || uniform_int(rng, 0, 9) < 3 + it) continue;
+        l.dx.push_back(dx);
+        l.dy.push_back(dy);
+        l.value.push_back(v > 0.0f ? 0.1f : -0.02f);
+      }
+    }
+    locals.push_back(l);
+  }
+  Lattice lat;
+  lat.x0 = 20, lat.x1 = 60, lat.y0 = 25, lat.y1 = 65;  // 41 x 41
+  lat.headings = 6;
+  lat.step_theta = 1.0;
+  for (ArcRule rule : kRules) {
+    const PaddedGrid padded = pad_grid(g, 10, rule);
+    const SearchResult r = expect_same_as_exhaustive(
+        lat, level_of(padded, locals), make_bound_pyramid(padded, bound_depth_for(lat)), "rooms");
+    EXPECT_EQ(r.best.ix, tx);
+    EXPECT_EQ(r.best.iy, ty);
+    EXPECT_LT(r.poses_scored, 41 * 41 * 6 / 4);
+  }
+}
+
+TEST(SearchBranchAndBound, RejectsBadInput) {
+  GridGeometry geo;
+  geo.width = 10;
+  geo.height = 8;
+  const EvidenceGrid g(geo, 0.0f);
+  const PaddedGrid padded = pad_grid(g, 2);
+  const BoundPyramid pyramid = make_bound_pyramid(padded, 2);
+  SparseLocalGrid l;
+  l.dx = {0, 2};
+  l.dy = {0, -1};
+  l.value = {1.0f, -1.0f};
+  const std::vector<SparseLocalGrid> locals = {l};
+  Lattice lat;
+  lat.x0 = 0, lat.x1 = 9, lat.y0 = 0, lat.y1 = 7;
+  EXPECT_NO_THROW(search_branch_and_bound(lat, level_of(padded, locals), pyramid));
+
+  auto expect_error = [&](const Lattice& la, const SearchLevel& level, const BoundPyramid& p,
+                          const std::string& text) {
+    try {
+      search_branch_and_bound(la, level, p);
+      ADD_FAILURE() << "no error, expected: " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  };
+  Lattice outside = lat;
+  outside.x1 = 10;
+  expect_error(outside, level_of(padded, locals), pyramid, "inside the 10 x 8 map");
+  Lattice empty = lat;
+  empty.y0 = 5, empty.y1 = 4;
+  expect_error(empty, level_of(padded, locals), pyramid, "must be non-empty");
+  Lattice no_headings = lat;
+  no_headings.headings = 0;
+  expect_error(no_headings, level_of(padded, locals), pyramid, "headings = 0");
+  const PaddedGrid other = pad_grid(g, 3);
+  expect_error(lat, level_of(other, locals), pyramid, "was not built from the searched grid");
+  SparseLocalGrid wide = l;
+  wide.dx.push_back(3);
+  wide.dy.push_back(0);
+  wide.value.push_back(1.0f);
+  const std::vector<SparseLocalGrid> wide_locals = {wide};
+  expect_error(lat, level_of(padded, wide_locals), pyramid, "exceeds the padding 2");
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -1,0 +1,101 @@
+// Tests of grids/src/pooling.cpp: the O(cells) sliding-window max / min pooling against the
+// plain reference loops, on random grids with fixed seeds.
+#include "gridloc/grids/pooling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+int uniform_int(std::mt19937& rng, int lo, int hi) {  // inclusive; portable, unlike <random>'s
+  return lo + static_cast<int>(rng() % static_cast<unsigned>(hi - lo + 1));
+}
+
+Grid<float> random_grid(std::mt19937& rng, int w, int h) {
+  GridGeometry g;
+  g.width = w;
+  g.height = h;
+  Grid<float> grid(g, 0.0f);
+  const bool ternary = rng() % 2 == 0;
+  for (float& v : grid.cells) {
+    v = ternary ? static_cast<float>(uniform_int(rng, -1, 1))
+                : static_cast<float>(static_cast<double>(rng()) / 4294967296.0 * 4.0 - 2.0);
+  }
+  return grid;
+}
+
+TEST(Pooling, ByHand) {
+  GridGeometry geo;
+  geo.width = 4;
+  geo.height = 3;
+  Grid<float> g(geo, 0.0f);
+  g.cells = {1,  5,  2, 0,  // row 0
+             3,  -1, 4, 7,  // row 1
+             -2, 6,  0, 1};
+  const Grid<float> mx = max_pool(g, 2);
+  EXPECT_EQ(mx.cells, (std::vector<float>{5, 5, 7, 7,  //
+                                          6, 6, 7, 7,  //
+                                          6, 6, 1, 1}));
+  const Grid<float> mn = min_pool(g, 2);
+  EXPECT_EQ(mn.cells, (std::vector<float>{-1, -1, 0, 0,  //
+                                          -2, -1, 0, 1,  //
+                                          -2, 0, 0, 1}));
+  EXPECT_EQ(max_pool(g, 1).cells, g.cells);
+  EXPECT_EQ(max_pool(g, 100).cells[0], 7.0f);
+  EXPECT_EQ(min_pool(g, 100).cells[0], -2.0f);
+}
+
+TEST(Pooling, FastEqualsReferenceOnRandomGrids) {
+  std::mt19937 rng(4242);
+  int compared = 0;
+  for (int c = 0; c < 400; ++c) {
+    const int w = uniform_int(rng, 1, 40), h = uniform_int(rng, 1, 40);
+    const Grid<float> g = random_grid(rng, w, h);
+    const int size = c % 4 == 0 ? uniform_int(rng, 1, 45) : (1 << uniform_int(rng, 0, 5));
+    const Grid<float> mx = max_pool(g, size), mn = min_pool(g, size);
+    ASSERT_EQ(mx.width(), w);
+    ASSERT_EQ(mx.height(), h);
+    EXPECT_EQ(mx.cells, max_pool_reference(g, size).cells) << "case " << c << " size " << size;
+    EXPECT_EQ(mn.cells, min_pool_reference(g, size).cells) << "case " << c << " size " << size;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 400);
+}
+
+TEST(Pooling, KeepsTheGeometry) {
+  GridGeometry geo;
+  geo.resolution = 0.05;
+  geo.origin = {1.0, -2.0};
+  geo.width = 3;
+  geo.height = 2;
+  const Grid<float> p = max_pool(Grid<float>(geo, 1.0f), 4);
+  EXPECT_EQ(p.geometry.resolution, 0.05);
+  EXPECT_EQ(p.geometry.origin, geo.origin);
+  EXPECT_EQ(p.cells, std::vector<float>(6, 1.0f));
+}
+
+TEST(Pooling, EmptyGridGivesEmptyGrid) {
+  EXPECT_TRUE(max_pool(Grid<float>(), 3).cells.empty());
+  EXPECT_TRUE(min_pool(Grid<float>(), 3).cells.empty());
+}
+
+TEST(Pooling, RejectsABlockSizeBelowOne) {
+  GridGeometry geo;
+  geo.width = 2;
+  geo.height = 2;
+  const Grid<float> g(geo, 0.0f);
+  EXPECT_THROW(max_pool(g, 0), Error);
+  EXPECT_THROW(min_pool(g, -3), Error);
+  try {
+    max_pool(g, 0);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("block size must be >= 1, got 0"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace gridloc
