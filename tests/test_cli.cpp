@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <string>
@@ -175,6 +176,33 @@ TEST_F(Cli, BadStrategyAndSubcommand) {
   const CliRun r = run_cli(dir, "teleport");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
+}
+
+TEST_F(Cli, GlobalLocalizationWithoutPrior) {
+  const std::string readings = dir.file("readings.json");
+  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1,1,0 --out " + quote(readings))
+                .status,
+            0);
+  const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --global --strategy bnb");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double x = j.at("pose").at("x"), y = j.at("pose").at("y"), t = j.at("pose").at("theta");
+  EXPECT_LE(std::hypot(x - 1.0, y - 1.0), 0.10) << r.out;
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(t))), 7.0) << r.out;
+  // The lattice winner and the window searched are reported beside the refined pose.
+  EXPECT_TRUE(j.at("lattice").contains("pose"));
+  EXPECT_NEAR(j.at("window").at("half_theta").get<double>(), std::numbers::pi, 1e-12);
+
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --global --prior 1,1,0"),
+                   "--global");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings)),
+                   "--prior");
+  const std::string scan = dir.write("s.csv", "0.0,1.0\n");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --scan " + quote(scan) + " --prior 1,1,0"),
+                   "--scan");
 }
 
 TEST_F(Cli, EvalJson) {

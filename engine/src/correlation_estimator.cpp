@@ -225,4 +225,28 @@ SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation,
                    options_.sonar);
 }
 
+SearchWindow CorrelationEstimator::global_window(const Observation& observation) const {
+  const PaddedGrid& finest = levels_.front();
+  const double res = options_.resolution;
+  SearchWindow w;
+  w.step_xy = res;
+  w.center =
+      map_.geometry.to_world_frame({0.5 * finest.width * res, 0.5 * finest.height * res, 0.0});
+  // Half the larger side plus a cell: the lattice covers every cell (it is clipped to the map).
+  w.half_xy = 0.5 * std::max(finest.width, finest.height) * res + res;
+  w.half_theta = std::numbers::pi;  // headings -pi and +pi coincide: one heading scored twice
+  w.step_theta = deg2rad(5.0);
+  if (observation.scan) {
+    double far = 0.0;
+    for (double r : observation.scan->ranges) {
+      if (r < observation.scan->max_range) far = std::max(far, r);
+    }
+    if (far > res) {
+      const double step = std::acos(1.0 - res * res / (2.0 * far * far));
+      w.step_theta = std::clamp(step, deg2rad(0.1), deg2rad(5.0));
+    }
+  }
+  return w;
+}
+
 }  // namespace gridloc

@@ -23,14 +23,15 @@ struct LocalizeArgs {
   SearchWindow window;
   int levels = 3;
   int repeat = 1;
+  bool whole_map = false;  // --global
   int threads = 1;
 };
 
 void run(const LocalizeArgs& a) {
   using clock = std::chrono::steady_clock;
   if (a.repeat < 1) throw Error("--repeat must be >= 1");
+  if (a.whole_map == !a.prior.empty()) throw Error("give either --prior x,y,theta or --global");
   SearchWindow window = a.window;
-  window.center = parse_pose(a.prior, "--prior");
   if (a.readings.empty() == a.scan.empty()) {
     throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
   }
@@ -58,6 +59,12 @@ void run(const LocalizeArgs& a) {
                : CorrelationEstimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
   const double precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
 
+  if (a.whole_map) {
+    window = estimator.global_window(obs);
+  } else {
+    window.center = parse_pose(a.prior, "--prior");
+  }
+
   Estimate e;
   std::vector<double> ms;
   for (int i = 0; i < a.repeat; ++i) {
@@ -67,6 +74,11 @@ void run(const LocalizeArgs& a) {
   std::sort(ms.begin(), ms.end());
   nlohmann::json j = to_json(e);
   j["lattice"] = {{"pose", to_json(e.lattice_pose)}, {"score", e.score}};
+  j["window"] = {{"center", to_json(window.center)},
+                 {"half_xy", window.half_xy},
+                 {"half_theta", window.half_theta},
+                 {"step_xy", window.step_xy},
+                 {"step_theta", window.step_theta}};
   j["timing"] = {{"median_ms", ms[ms.size() / 2]},
                  {"min_ms", ms.front()},
                  {"precompute_ms", precompute_ms},
@@ -87,7 +99,9 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--scan", a->scan, "laser/IR scan CSV: angle_rad,range_m per line");
   cmd->add_option("--max-range", a->max_range, "scan max range (m); longer ranges are no return")
       ->capture_default_str();
-  cmd->add_option("--prior", a->prior, "prior pose x,y,theta (m, m, rad)")->required();
+  cmd->add_option("--prior", a->prior, "prior pose x,y,theta (m, m, rad)");
+  cmd->add_flag("--global", a->whole_map,
+                "no prior: search the whole map and every heading (use --strategy bnb)");
   cmd->add_option("--window-xy", a->window.half_xy, "half width of the search square (m)")
       ->capture_default_str();
   cmd->add_option("--window-theta", a->window.half_theta, "half width of the heading cone (rad)")
@@ -99,7 +113,7 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--strategy", a->strategy, "multires | exhaustive | bnb (exact, fast)")
       ->capture_default_str();
   cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
-  cmd->add_option("--global", a->global, "global grid: thinned | raw")->capture_default_str();
+  cmd->add_option("--global-grid", a->global, "global grid: thinned | raw")->capture_default_str();
   cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
   cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
       ->capture_default_str();

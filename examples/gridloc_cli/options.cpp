@@ -39,7 +39,7 @@ LocalModel parse_local(const std::string& s) {
 GlobalModel parse_global(const std::string& s) {
   if (s == "thinned") return GlobalModel::Thinned;
   if (s == "raw") return GlobalModel::Raw;
-  throw Error("--global must be thinned or raw, not '" + s + "'");
+  throw Error("--global-grid must be thinned or raw, not '" + s + "'");
 }
 
 SearchStrategy parse_strategy(const std::string& s) {

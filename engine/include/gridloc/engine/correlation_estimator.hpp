@@ -45,6 +45,13 @@ class CorrelationEstimator final : public Estimator {
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
   std::string name() const override { return "correlation"; }
 
+  /// The window of a global localization (no prior): the whole map, every heading. The
+  /// heading step is the seed's 5 degrees for the sonar ring; for a scan it is the angle
+  /// that moves the farthest return by about one cell, acos(1 - res^2 / (2 r^2)), kept
+  /// within [0.1, 5] degrees. Search it with SearchStrategy::BranchAndBound: exact, and it
+  /// prunes most of the map.
+  SearchWindow global_window(const Observation& observation) const;
+
   const CorrelationOptions& options() const { return options_; }
   const OccupancyMap& map() const { return map_; }
   const SonarRing& ring() const { return ring_; }
