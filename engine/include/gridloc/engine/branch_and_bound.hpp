@@ -50,17 +50,8 @@ inline double block_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& lo
   const auto& arc_grid = pyramid.arc_max[static_cast<std::size_t>(h)];
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(iy + pyramid.pad) * arc_grid.width() + (ix + pyramid.pad);
-  const float* arc = arc_grid.cells.data() + origin;
-  const float* all = pyramid.grid_min[static_cast<std::size_t>(h)].cells.data() + origin;
-  double positive = 0.0, negative = 0.0;
-  const std::size_t n = local.value.size();
-  for (std::size_t k = 0; k < local.arc_count; ++k) {
-    positive += static_cast<double>(local.value[k] * arc[local.offset[k]]);
-  }
-  for (std::size_t k = local.arc_count; k < n; ++k) {
-    negative += static_cast<double>(local.value[k] * all[local.offset[k]]);
-  }
-  return positive + negative;
+  return correlate(arc_grid.cells.data() + origin,
+                   pyramid.grid_min[static_cast<std::size_t>(h)].cells.data() + origin, local);
 }
 
 /// Poses left out of a search: those within `radius_cells` (Euclidean, in cells) and

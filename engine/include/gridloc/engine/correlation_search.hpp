@@ -47,13 +47,11 @@ struct PlacedLocalGrid {
 
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 
-/// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
-/// and the local grid's extent must not exceed the padding. Equal to score_reference exactly.
-inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
-  const std::ptrdiff_t origin =
-      static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
-  const float* arc = global.arc_view.data() + origin;
-  const float* all = global.grid.cells.data() + origin;
+/// The correlation of a placed local grid with two grids seen from one origin: arc cells
+/// read `arc`, the others `all`; positives and negatives are summed apart, each in the local
+/// grid's order, then added. score() and the branch-and-bound bounds both sum this way, which
+/// is what makes a bound >= the score bit for bit.
+inline double correlate(const float* arc, const float* all, const PlacedLocalGrid& local) {
   double positive = 0.0, negative = 0.0;
   const std::size_t n = local.value.size();
   for (std::size_t k = 0; k < local.arc_count; ++k) {
@@ -63,6 +61,14 @@ inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int 
     negative += static_cast<double>(local.value[k] * all[local.offset[k]]);
   }
   return positive + negative;
+}
+
+/// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
+/// and the local grid's extent must not exceed the padding. Equal to score_reference exactly.
+inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
+  const std::ptrdiff_t origin =
+      static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
+  return correlate(global.arc_view.data() + origin, global.grid.cells.data() + origin, local);
 }
 
 /// A candidate of the search lattice: map cell and heading index.
