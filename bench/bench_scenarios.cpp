@@ -83,20 +83,31 @@ SearchWindow window_for(const Trial& trial, const OccupancyMap& map, double half
   return w;
 }
 
-const CorrelationEstimator& estimator(const std::string& name, SearchStrategy strategy) {
-  static std::map<std::pair<std::string, SearchStrategy>, std::unique_ptr<CorrelationEstimator>>
+const CorrelationEstimator& estimator(const std::string& name, SearchStrategy strategy,
+                                      int threads) {
+  static std::map<std::tuple<std::string, SearchStrategy, int>,
+                  std::unique_ptr<CorrelationEstimator>>
       cache;
-  auto& slot = cache[{name, strategy}];
+  auto& slot = cache[{name, strategy, threads}];
   if (!slot) {
     CorrelationOptions options;
     options.strategy = strategy;
+    options.threads = threads;
     slot = std::make_unique<CorrelationEstimator>(bundled_map(name), wheelchair_ring(), options);
   }
   return *slot;
 }
 
 std::string strategy_name(SearchStrategy strategy) {
-  return strategy == SearchStrategy::Multires ? "multires" : "exhaustive";
+  switch (strategy) {
+    case SearchStrategy::Multires:
+      return "multires";
+    case SearchStrategy::Exhaustive:
+      return "exhaustive";
+    case SearchStrategy::BranchAndBound:
+      return "bnb";
+  }
+  return "unknown";
 }
 
 namespace {
@@ -105,45 +116,74 @@ struct Accuracy {
   double success = 0.0;        ///< fraction of the trials within 10 cm and 7 deg
   double pos_err_mm = 0.0;     ///< mean position error
   double poses_per_loc = 0.0;  ///< mean poses scored per localization
+  double same_as_exh = 0.0;    ///< fraction of trials identical to single-threaded exhaustive
 };
 
+bool same(const Pose2& a, const Pose2& b) {
+  return a.x == b.x && a.y == b.y && a.theta == b.theta;
+}
+
+/// Every trial localized once, in the given windows (one per trial).
+std::vector<Estimate> estimates(const CorrelationEstimator& est, const std::vector<Trial>& set,
+                                const std::vector<SearchWindow>& windows) {
+  std::vector<Estimate> out;
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    out.push_back(est.estimate(set[k].observation, windows[k]));
+  }
+  return out;
+}
+
 /// Every trial localized once, untimed (the estimator is deterministic): accuracy does not
-/// depend on how many iterations the timing loop happens to run. Cached per configuration.
-const Accuracy& accuracy(const std::string& name, SearchStrategy strategy,
+/// depend on how many iterations the timing loop happens to run. Cached per configuration,
+/// as are the single-threaded exhaustive estimates it is compared with.
+const Accuracy& accuracy(const std::string& name, SearchStrategy strategy, int threads,
                          const std::vector<SearchWindow>& windows) {
-  static std::map<std::tuple<std::string, SearchStrategy, double, double>, Accuracy> cache;
-  const auto key =
-      std::make_tuple(name, strategy, windows.front().half_xy, windows.front().half_theta);
+  using Key = std::tuple<std::string, SearchStrategy, int, double, double>;
+  static std::map<Key, Accuracy> cache;
+  static std::map<Key, std::vector<Estimate>> reference;
+  const double hx = windows.front().half_xy, ht = windows.front().half_theta;
+  const Key key{name, strategy, threads, hx, ht};
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  const CorrelationEstimator& est = estimator(name, strategy);
   const std::vector<Trial>& set = trials(name);
+  const Key ref_key{name, SearchStrategy::Exhaustive, 1, hx, ht};
+  auto ref = reference.find(ref_key);
+  if (ref == reference.end()) {
+    const CorrelationEstimator& exhaustive = estimator(name, SearchStrategy::Exhaustive);
+    ref = reference.emplace(ref_key, estimates(exhaustive, set, windows)).first;
+  }
+  const std::vector<Estimate> got = estimates(estimator(name, strategy, threads), set, windows);
   Accuracy a;
   for (std::size_t k = 0; k < set.size(); ++k) {
-    const Estimate e = est.estimate(set[k].observation, windows[k]);
+    const Estimate& e = got[k];
+    const Estimate& r = ref->second[k];
     const Pose2& truth = set[k].truth;
     const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
     const double dt = std::abs(normalize_angle(e.pose.theta - truth.theta));
     a.success += (dp <= kSuccessXy && dt <= kSuccessTheta) ? 1.0 : 0.0;
     a.pos_err_mm += 1000.0 * dp;
     a.poses_per_loc += static_cast<double>(e.stats.poses_scored);
+    const bool identical =
+        same(e.pose, r.pose) && same(e.lattice_pose, r.lattice_pose) && e.score == r.score;
+    a.same_as_exh += identical ? 1.0 : 0.0;
   }
   const double n = static_cast<double>(set.size());
   a.success /= n;
   a.pos_err_mm /= n;
   a.poses_per_loc /= n;
+  a.same_as_exh /= n;
   return cache.emplace(key, a).first->second;
 }
 
 }  // namespace
 
 void localize_loop(benchmark::State& state, const std::string& name, SearchStrategy strategy,
-                   double half_xy, double half_theta) {
-  const CorrelationEstimator& est = estimator(name, strategy);
+                   double half_xy, double half_theta, int threads) {
+  const CorrelationEstimator& est = estimator(name, strategy, threads);
   const std::vector<Trial>& set = trials(name);
   std::vector<SearchWindow> windows;
   for (const Trial& t : set) windows.push_back(window_for(t, est.map(), half_xy, half_theta));
-  const Accuracy& acc = accuracy(name, strategy, windows);
+  const Accuracy& acc = accuracy(name, strategy, threads, windows);
 
   std::vector<double> elapsed_ms;
   elapsed_ms.reserve(static_cast<std::size_t>(state.max_iterations));
@@ -165,6 +205,8 @@ void localize_loop(benchmark::State& state, const std::string& name, SearchStrat
   state.counters["cells_per_s"] = Counter(cells, Counter::kIsRate);
   state.counters["success"] = acc.success;
   state.counters["pos_err_mm"] = acc.pos_err_mm;
+  state.counters["same_as_exh"] = acc.same_as_exh;
+  state.counters["threads"] = threads;
   state.counters["median_ms"] = median(std::move(elapsed_ms));
 }
 

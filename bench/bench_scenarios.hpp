@@ -34,17 +34,21 @@ const std::vector<Trial>& trials(const std::string& name);
 SearchWindow window_for(const Trial& trial, const OccupancyMap& map, double half_xy,
                         double half_theta);
 
-/// A correlation estimator with default options and `strategy` on map `name`; cached.
-const CorrelationEstimator& estimator(const std::string& name, SearchStrategy strategy);
+/// A correlation estimator with default options, `strategy` and `threads` on map `name`;
+/// cached.
+const CorrelationEstimator& estimator(const std::string& name, SearchStrategy strategy,
+                                      int threads = 1);
 
-/// "multires" or "exhaustive".
+/// "multires", "exhaustive" or "bnb" (as the CLI's --strategy).
 std::string strategy_name(SearchStrategy strategy);
 
 /// Times one localization per iteration, cycling through trials(name); sets items (one
 /// localization each), the rates poses_per_s and cells_per_s, median_ms (median of the
 /// estimator's own elapsed_ms over the iterations), and, from one untimed pass over all 16
-/// trials, success (within 10 cm and 7 deg), pos_err_mm (mean) and poses_per_loc.
+/// trials, success (within 10 cm and 7 deg), pos_err_mm (mean), poses_per_loc (poses scored)
+/// and same_as_exh: the fraction of trials whose pose, lattice pose and score equal, bit for
+/// bit, those of the single-threaded exhaustive search in the same window.
 void localize_loop(benchmark::State& state, const std::string& name, SearchStrategy strategy,
-                   double half_xy, double half_theta);
+                   double half_xy, double half_theta, int threads = 1);
 
 }  // namespace gridloc::bench

@@ -159,7 +159,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
         {&levels_[static_cast<std::size_t>(l)],
          [&, level_res = level_resolution(res, l)](double theta, const Eigen::Vector2d& centre) {
            return local_grid(observation, theta, level_res, centre);
-         }});
+         },
+         options_.threads});
   }
   SearchResult r;
   std::vector<PlacedLocalGrid> placed;  // branch and bound: shared by its two searches
