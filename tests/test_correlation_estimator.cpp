@@ -356,3 +356,19 @@ TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+TEST(CorrelationEstimatorErrors, TooManyHeadingsIsAnErrorNotAnAllocation) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
+  const CorrelationEstimator estimator(map, load_sonar_ring(test::ring_path()));
+  SearchWindow w;
+  w.center = {2.0, 2.0, 0.0};
+  w.step_theta = 1e-9;
+  const Observation obs{std::vector<double>(14, 2.0)};
+  test::expect_error([&] { (void)estimator.estimate(obs, w); }, {"step_theta", "headings"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -141,8 +141,16 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
     m << "prior (" << window.center.x << ", " << window.center.y << ") lies outside the map";
     throw Error(m.str());
   }
-  const int n = static_cast<int>(std::lround(window.half_xy / res));
-  const int nt = static_cast<int>(std::lround(window.half_theta / window.step_theta));
+  // Clipped to the map below; the cap only keeps the integer arithmetic safe.
+  const int n = static_cast<int>(std::min(std::lround(window.half_xy / res), 1L << 20));
+  const double half_headings = window.half_theta / window.step_theta;
+  if (half_headings > 50000.0) {
+    std::ostringstream m;
+    m << "search window: half_theta / step_theta = " << half_headings
+      << " would search more than 100001 headings; use a larger step_theta";
+    throw Error(m.str());
+  }
+  const int nt = static_cast<int>(std::lround(half_headings));
   Lattice lattice;
   lattice.x0 = std::max(0, c.ix - n);
   lattice.x1 = std::min(finest.width - 1, c.ix + n);
