@@ -6,7 +6,6 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
-#include <unordered_map>
 
 #include "gridloc/grids/error.hpp"
 
@@ -98,63 +97,102 @@ RangeScan load_scan_csv(const std::string& path, double max_range) {
   return scan;
 }
 
+namespace {
+
+/// Dense scratch canvas for scan grids, reused by each thread across calls: only the cells a
+/// call wrote are cleared afterwards, so a call costs its rays, not the canvas area.
+class ScanCanvas {
+ public:
+  void prepare(int half) {
+    if (half > half_) {
+      half_ = half;
+      side_ = 2 * half + 1;
+      free_.assign(static_cast<std::size_t>(side_) * side_, 0.0f);
+      hit_.assign(free_.size(), 0);
+      written_.assign(free_.size(), 0);
+    }
+    y_min_ = side_;
+    y_max_ = -1;
+  }
+  /// Index of cell (x, y) relative to the centre; callers stay within +-half.
+  int index(int x, int y) const { return (y + half_) * side_ + (x + half_); }
+  void add_free(int idx, float v) {
+    touch(idx);
+    free_[idx] += v;
+  }
+  void set_hit(int idx) {
+    touch(idx);
+    hit_[idx] = 1;
+  }
+  /// The written cells in row-major order (end cells beat free cells), then a reset.
+  SparseLocalGrid collect(double theta, double resolution) {
+    SparseLocalGrid g;
+    g.resolution = resolution;
+    g.theta = theta;
+    for (int row = std::max(0, y_min_); row <= y_max_; ++row) {
+      const int begin = row * side_;
+      for (int idx = begin; idx < begin + side_; ++idx) {
+        if (!written_[idx]) continue;
+        const float v = hit_[idx] ? 1.0f : free_[idx];
+        if (v != 0.0f) {
+          g.dx.push_back(idx - begin - half_);
+          g.dy.push_back(row - half_);
+          g.value.push_back(v);
+        }
+        free_[idx] = 0.0f;
+        hit_[idx] = 0;
+        written_[idx] = 0;
+      }
+    }
+    return g;
+  }
+
+ private:
+  void touch(int idx) {
+    written_[idx] = 1;
+    const int row = idx / side_;
+    y_min_ = std::min(y_min_, row);
+    y_max_ = std::max(y_max_, row);
+  }
+
+  int half_ = -1;
+  int side_ = 0;
+  int y_min_ = 0;
+  int y_max_ = -1;
+  std::vector<float> free_;
+  std::vector<unsigned char> hit_;
+  std::vector<unsigned char> written_;
+};
+
+}  // namespace
+
 SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resolution,
                                const Eigen::Vector2d& centre) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("local grid resolution must be positive, got " + std::to_string(resolution));
   }
-  // Sparse accumulation keyed by cell: a laser grid is a thin set of rays in a large disc.
-  struct Acc {
-    float free = 0.0f;
-    bool hit = false;
-  };
-  std::unordered_map<long long, Acc> cells;
-  cells.reserve(scan.ranges.size() * 16);
-  auto key = [](int x, int y) {
-    return (static_cast<long long>(y) << 32) ^ static_cast<unsigned>(x);
-  };
   const double inv = 1.0 / resolution;
   const double x0 = centre.x() * inv, y0 = centre.y() * inv;
-  std::vector<long long> crossed;
+  thread_local ScanCanvas canvas;
+  canvas.prepare(static_cast<int>(std::ceil(scan.max_range * inv + std::hypot(x0, y0))) + 2);
+  thread_local std::vector<int> crossed;
   for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
     const bool hit = scan.ranges[k] < scan.max_range;
     const double r = (hit ? scan.ranges[k] : scan.max_range) * inv;
     const double a = theta + scan.angles[k];
     const double x1 = x0 + r * std::cos(a), y1 = y0 + r * std::sin(a);
     crossed.clear();
-    cells_before(x0, y0, x1, y1, [&](int x, int y) { crossed.push_back(key(x, y)); });
+    cells_before(x0, y0, x1, y1, [&](int x, int y) { crossed.push_back(canvas.index(x, y)); });
     if (!crossed.empty()) {
       const float v = -1.0f / static_cast<float>(crossed.size());
-      for (long long c : crossed) cells[c].free += v;
+      for (int idx : crossed) canvas.add_free(idx, v);
     }
     if (hit) {
-      cells[key(static_cast<int>(std::floor(x1 + 0.5)), static_cast<int>(std::floor(y1 + 0.5)))]
-          .hit = true;
+      canvas.set_hit(canvas.index(static_cast<int>(std::floor(x1 + 0.5)),
+                                  static_cast<int>(std::floor(y1 + 0.5))));
     }
   }
-  std::vector<std::pair<long long, float>> sorted;
-  sorted.reserve(cells.size());
-  for (const auto& [k, acc] : cells) {
-    const float v = acc.hit ? 1.0f : acc.free;
-    if (v != 0.0f) sorted.emplace_back(k, v);
-  }
-  // Row-major order: by y, then x (the key's high half is y; compare decoded pairs).
-  auto decode = [](long long k) {
-    return std::pair<int, int>(static_cast<int>(k >> 32),
-                               static_cast<int>(static_cast<unsigned>(k)));
-  };
-  std::sort(sorted.begin(), sorted.end(),
-            [&](const auto& a, const auto& b) { return decode(a.first) < decode(b.first); });
-  SparseLocalGrid g;
-  g.resolution = resolution;
-  g.theta = theta;
-  for (const auto& [k, v] : sorted) {
-    const auto [y, x] = decode(k);
-    g.dx.push_back(x);
-    g.dy.push_back(y);
-    g.value.push_back(v);
-  }
-  return g;
+  return canvas.collect(theta, resolution);
 }
 
 }  // namespace gridloc
