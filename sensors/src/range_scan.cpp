@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "canvas.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
@@ -97,75 +98,6 @@ RangeScan load_scan_csv(const std::string& path, double max_range) {
   return scan;
 }
 
-namespace {
-
-/// Dense scratch canvas for scan grids, reused by each thread across calls: only the cells a
-/// call wrote are cleared afterwards, so a call costs its rays, not the canvas area.
-class ScanCanvas {
- public:
-  void prepare(int half) {
-    if (half > half_) {
-      half_ = half;
-      side_ = 2 * half + 1;
-      free_.assign(static_cast<std::size_t>(side_) * side_, 0.0f);
-      hit_.assign(free_.size(), 0);
-      written_.assign(free_.size(), 0);
-    }
-    y_min_ = side_;
-    y_max_ = -1;
-  }
-  /// Index of cell (x, y) relative to the centre; callers stay within +-half.
-  int index(int x, int y) const { return (y + half_) * side_ + (x + half_); }
-  void add_free(int idx, float v) {
-    touch(idx);
-    free_[idx] += v;
-  }
-  void set_hit(int idx) {
-    touch(idx);
-    hit_[idx] = 1;
-  }
-  /// The written cells in row-major order (end cells beat free cells), then a reset.
-  SparseLocalGrid collect(double theta, double resolution) {
-    SparseLocalGrid g;
-    g.resolution = resolution;
-    g.theta = theta;
-    for (int row = std::max(0, y_min_); row <= y_max_; ++row) {
-      const int begin = row * side_;
-      for (int idx = begin; idx < begin + side_; ++idx) {
-        if (!written_[idx]) continue;
-        const float v = hit_[idx] ? 1.0f : free_[idx];
-        if (v != 0.0f) {
-          g.dx.push_back(idx - begin - half_);
-          g.dy.push_back(row - half_);
-          g.value.push_back(v);
-        }
-        free_[idx] = 0.0f;
-        hit_[idx] = 0;
-        written_[idx] = 0;
-      }
-    }
-    return g;
-  }
-
- private:
-  void touch(int idx) {
-    written_[idx] = 1;
-    const int row = idx / side_;
-    y_min_ = std::min(y_min_, row);
-    y_max_ = std::max(y_max_, row);
-  }
-
-  int half_ = -1;
-  int side_ = 0;
-  int y_min_ = 0;
-  int y_max_ = -1;
-  std::vector<float> free_;
-  std::vector<unsigned char> hit_;
-  std::vector<unsigned char> written_;
-};
-
-}  // namespace
-
 SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resolution,
                                const Eigen::Vector2d& centre) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
@@ -173,8 +105,8 @@ SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resol
   }
   const double inv = 1.0 / resolution;
   const double x0 = centre.x() * inv, y0 = centre.y() * inv;
-  thread_local ScanCanvas canvas;
-  canvas.prepare(static_cast<int>(std::ceil(scan.max_range * inv + std::hypot(x0, y0))) + 2);
+  detail::Canvas& canvas = detail::Canvas::for_this_thread(
+      static_cast<int>(std::ceil(scan.max_range * inv + std::hypot(x0, y0))) + 2, resolution);
   thread_local std::vector<int> crossed;
   for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
     const bool hit = scan.ranges[k] < scan.max_range;
@@ -182,17 +114,20 @@ SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resol
     const double a = theta + scan.angles[k];
     const double x1 = x0 + r * std::cos(a), y1 = y0 + r * std::sin(a);
     crossed.clear();
-    cells_before(x0, y0, x1, y1, [&](int x, int y) { crossed.push_back(canvas.index(x, y)); });
+    cells_before(x0, y0, x1, y1,
+                 [&](int x, int y) { crossed.push_back(canvas.index_of_cell(x, y)); });
     if (!crossed.empty()) {
       const float v = -1.0f / static_cast<float>(crossed.size());
       for (int idx : crossed) canvas.add_free(idx, v);
     }
     if (hit) {
-      canvas.set_hit(canvas.index(static_cast<int>(std::floor(x1 + 0.5)),
-                                  static_cast<int>(std::floor(y1 + 0.5))));
+      // An end cell is +1 however many beams end in it.
+      const int end = canvas.index_of_cell(static_cast<int>(std::floor(x1 + 0.5)),
+                                           static_cast<int>(std::floor(y1 + 0.5)));
+      canvas.set(end, 1.0f, 0.0f);
     }
   }
-  return canvas.collect(theta, resolution);
+  return canvas.collect(theta);
 }
 
 }  // namespace gridloc

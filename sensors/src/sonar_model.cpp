@@ -4,87 +4,13 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "canvas.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
 namespace {
 
-/// Dense scratch canvas centred on the robot's cell; the cells written are listed so that
-/// collecting them costs their number, not the canvas area.
-class Canvas {
- public:
-  Canvas(double reach, double resolution)
-      : res_(resolution),
-        inv_res_(1.0 / resolution),
-        half_(static_cast<int>(std::ceil(reach / resolution)) + 2),
-        side_(2 * half_ + 1),
-        arc_(static_cast<std::size_t>(side_) * side_, 0.0f),
-        free_(arc_.size(), 0.0f),
-        stamp_(arc_.size(), -1),
-        listed_(arc_.size(), 0) {}
-
-  /// Index of the cell holding robot-centred point (x, y); the robot centre is the centre of
-  /// cell (0, 0), hence the +0.5.
-  int cell_index(double x, double y) const {
-    // Shifted by half_ so the value is positive on the canvas: truncation is then floor,
-    // without a call to std::floor (no SSE4.1 rounding in the baseline x86-64 ISA).
-    const int ix = static_cast<int>(x * inv_res_ + 0.5 + half_);
-    const int iy = static_cast<int>(y * inv_res_ + 0.5 + half_);
-    return iy * side_ + ix;
-  }
-  int index_of_cell(int cx, int cy) const { return (cy + half_) * side_ + (cx + half_); }
-  int cx(int idx) const { return idx % side_ - half_; }
-  int cy(int idx) const { return idx / side_ - half_; }
-  bool adjacent8(int a, int b) const {
-    return std::abs(cx(a) - cx(b)) <= 1 && std::abs(cy(a) - cy(b)) <= 1;
-  }
-  /// Marks idx for pass `pass`; returns true the first time.
-  bool mark(int idx, int pass) {
-    if (stamp_[idx] == pass) return false;
-    stamp_[idx] = pass;
-    return true;
-  }
-  bool marked(int idx, int pass) const { return stamp_[idx] == pass; }
-  float& arc(int idx) { return arc_[list(idx)]; }
-  float& free(int idx) { return free_[list(idx)]; }
-  double resolution() const { return res_; }
-
-  /// Collects the non-zero cells, sorted by (dy, dx): row-major canvas indices in order.
-  /// Overlap rule: arc beats free.
-  SparseLocalGrid collect(double theta) {
-    SparseLocalGrid g;
-    g.resolution = res_;
-    g.theta = theta;
-    std::sort(written_.begin(), written_.end());
-    for (int i : written_) {
-      const float v = arc_[i] > 0.0f ? arc_[i] : free_[i];
-      if (v == 0.0f) continue;
-      g.dx.push_back(cx(i));
-      g.dy.push_back(cy(i));
-      g.value.push_back(v);
-    }
-    return g;
-  }
-
- private:
-  int list(int idx) {
-    if (!listed_[idx]) {
-      listed_[idx] = 1;
-      written_.push_back(idx);
-    }
-    return idx;
-  }
-
-  double res_;
-  double inv_res_;
-  int half_;
-  int side_;
-  std::vector<float> arc_;
-  std::vector<float> free_;
-  std::vector<int> stamp_;
-  std::vector<unsigned char> listed_;
-  std::vector<int> written_;  ///< canvas indices ever written
-};
+using detail::Canvas;
 
 /// Angular samples across a cone so that neighbouring samples at range rho are at most a
 /// quarter cell apart.
@@ -93,8 +19,8 @@ int angular_samples(double cone, double rho, double res) {
 }
 
 void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
-              const Eigen::Vector2d& centre, const SonarModelOptions& options, int pass_arc,
-              int pass_free) {
+              const Eigen::Vector2d& centre, const SonarModelOptions& options) {
+  const std::uint32_t pass_arc = canvas.new_pass(), pass_free = canvas.new_pass();
   const double res = canvas.resolution();
   // seed 001 eq. (3), in this project's axes (x forward): sensor at (r, beta + theta), axis
   // at epsilon + theta.
@@ -127,7 +53,7 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
       }
     }
     const float v = 1.0f / static_cast<float>(arc.size());
-    for (int idx : arc) canvas.arc(idx) += v;
+    for (int idx : arc) canvas.add_arc(idx, v);
   }
 
   // Free sector: cells swept by the cone before the arc, sampled every half cell along
@@ -152,7 +78,7 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
   }
   if (!free_cells.empty()) {
     const float v = -1.0f / static_cast<float>(free_cells.size());
-    for (int idx : free_cells) canvas.free(idx) += v;
+    for (int idx : free_cells) canvas.add_free(idx, v);
   }
 }
 
@@ -168,11 +94,11 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
                                    double theta, double resolution, const Eigen::Vector2d& centre,
                                    const SonarModelOptions& options) {
   check_resolution(resolution);
-  Canvas canvas(ring.reach() + resolution + centre.norm(), resolution);
-  int pass = 0;
+  Canvas& canvas = Canvas::for_this_thread(
+      static_cast<int>(std::ceil((ring.reach() + 2 * resolution + centre.norm()) / resolution)) + 2,
+      resolution);
   for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
-    add_cone(canvas, ring.sonars[i], ranges[i], theta, centre, options, pass, pass + 1);
-    pass += 2;
+    add_cone(canvas, ring.sonars[i], ranges[i], theta, centre, options);
   }
   // Footprint: its n cells share -N/n, overriding the cones (the robot stands there).
   if (ring.footprint.polygon.size() >= 3) {
@@ -192,8 +118,7 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
     }
     const float v = -static_cast<float>(ring.sonars.size()) / static_cast<float>(cells.size());
     for (int idx : cells) {
-      canvas.arc(idx) = 0.0f;
-      canvas.free(idx) = v;
+      canvas.set(idx, 0.0f, v);
     }
   }
   return canvas.collect(theta);
@@ -204,15 +129,16 @@ SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double
                                  const SonarModelOptions& options) {
   const SparseLocalGrid upright =
       rasterize_oriented(ring, ranges, 0.0, resolution, Eigen::Vector2d::Zero(), options);
-  Canvas canvas(ring.reach() + 2 * resolution + centre.norm(), resolution);
+  Canvas& canvas = Canvas::for_this_thread(
+      static_cast<int>(std::ceil((ring.reach() + 3 * resolution + centre.norm()) / resolution)) + 2,
+      resolution);
   const double c = std::cos(theta), s = std::sin(theta);
   // Write into the arc/free layers by sign so that "later value wins" holds per cell.
   for (std::size_t k = 0; k < upright.size(); ++k) {
     const double x = upright.dx[k] * resolution, y = upright.dy[k] * resolution;
     const int idx = canvas.cell_index(centre.x() + c * x - s * y, centre.y() + s * x + c * y);
     const float v = upright.value[k];
-    canvas.arc(idx) = v > 0.0f ? v : 0.0f;
-    canvas.free(idx) = v < 0.0f ? v : 0.0f;
+    canvas.set(idx, v > 0.0f ? v : 0.0f, v < 0.0f ? v : 0.0f);
   }
   return canvas.collect(theta);
 }
