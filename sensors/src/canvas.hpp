@@ -82,6 +82,7 @@ class Canvas {
 
  private:
   void prepare(int half, double resolution) {
+    if (y_max_ >= 0) collect(0.0);  // a previous call that threw left cells behind
     res_ = resolution;
     inv_res_ = 1.0 / resolution;
     if (half > half_) {  // grow only: levels of different resolutions share one canvas
