@@ -14,10 +14,9 @@ namespace gridloc::cli {
 namespace {
 
 struct EvalArgs {
-  std::string maps, ring, strategy = "multires", noise = "realistic", arc_rule = "neutral";
-  double arc_depth = SonarModelOptions{}.arc_depth_cells;
+  std::string maps, ring, noise = "realistic";
+  SearchArgs search;
   int trials = 100;
-  int threads = 1;
   std::uint64_t seed = 1;
   bool json = false;
   bool quiet = false;
@@ -37,10 +36,7 @@ void run(const EvalArgs& a) {
   EvalOptions o;
   o.trials = a.trials;
   o.seed = a.seed;
-  o.search.strategy = parse_strategy(a.strategy);
-  o.search.threads = a.threads;
-  o.search.arc_rule = parse_arc_rule(a.arc_rule);
-  o.search.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
+  a.search.apply(o.search);
   if (a.noise == "none") {
     o.noise = SonarSimOptions{};
   } else if (a.noise != "realistic") {
@@ -81,10 +77,10 @@ void run(const EvalArgs& a) {
     std::cout << nlohmann::json{{"trials", report.trials},
                                 {"maps", names},
                                 {"seed", a.seed},
-                                {"strategy", a.strategy},
+                                {"strategy", a.search.strategy},
                                 {"noise", a.noise},
-                                {"arc_rule", a.arc_rule},
-                                {"arc_depth_cells", a.arc_depth},
+                                {"arc_rule", a.search.arc_rule},
+                                {"arc_depth_cells", a.search.arc_depth},
                                 {"configurations", configs}}
                      .dump(2)
               << "\n";
@@ -93,8 +89,8 @@ void run(const EvalArgs& a) {
   std::printf(
       "seed 001 protocol: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
       "depth %.2g cells\n",
-      report.trials, maps.size(), static_cast<unsigned long long>(a.seed), a.strategy.c_str(),
-      a.noise.c_str(), a.arc_rule.c_str(), a.arc_depth);
+      report.trials, maps.size(), static_cast<unsigned long long>(a.seed),
+      a.search.strategy.c_str(), a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth);
   std::printf("%-9s %-8s %9s %14s %16s %10s\n", "local", "global", "success", "mean pos err",
               "mean head err", "median");
   for (const auto& c : report.configurations) {
@@ -117,15 +113,8 @@ void add_eval(CLI::App& app) {
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
   cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
-  cmd->add_option("--strategy", a->strategy, "multires | exhaustive | bnb (exact, fast)")
-      ->capture_default_str();
   cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
-  cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
-      ->capture_default_str();
-  cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
-      ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "threads per localization (same results)")
-      ->capture_default_str();
+  a->search.add_to(cmd);
   cmd->add_flag("--json", a->json, "print JSON instead of the table");
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   cmd->callback([a] { run(*a); });

@@ -18,13 +18,12 @@ namespace {
 struct LocalizeArgs {
   std::string map, ring, readings, scan, prior;
   double max_range = 8.0;
-  std::string strategy = "multires", local = "oriented", global = "thinned", arc_rule = "neutral";
-  double arc_depth = SonarModelOptions{}.arc_depth_cells;
+  std::string local = "oriented", global = "thinned";
+  SearchArgs search;
   SearchWindow window;
   int levels = 3;
   int repeat = 1;
   bool whole_map = false;  // --global
-  int threads = 1;
 };
 
 void run(const LocalizeArgs& a) {
@@ -46,12 +45,9 @@ void run(const LocalizeArgs& a) {
   CorrelationOptions o;
   o.local = parse_local(a.local);
   o.global = parse_global(a.global);
-  o.strategy = parse_strategy(a.strategy);
-  o.arc_rule = parse_arc_rule(a.arc_rule);
-  o.sonar.arc_depth_cells = check_arc_depth(a.arc_depth);
+  a.search.apply(o);
   o.resolution = window.step_xy;
   o.levels = a.levels;
-  o.threads = a.threads;
   // A scan needs no ring: the padding covers its max range instead.
   o.reach_m = obs.scan ? a.max_range : 0.0;
   const CorrelationEstimator estimator =
@@ -110,17 +106,10 @@ void add_localize(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")
       ->capture_default_str();
-  cmd->add_option("--strategy", a->strategy, "multires | exhaustive | bnb (exact, fast)")
-      ->capture_default_str();
   cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
   cmd->add_option("--global-grid", a->global, "global grid: thinned | raw")->capture_default_str();
   cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
-  cmd->add_option("--arc-rule", a->arc_rule, "arc cell on free space: neutral | signed (seed 001)")
-      ->capture_default_str();
-  cmd->add_option("--arc-depth", a->arc_depth, "radial arc depth, cells each side (0 = seed 001)")
-      ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "threads scoring headings in parallel (same result)")
-      ->capture_default_str();
+  a->search.add_to(cmd);
   cmd->add_option("--repeat", a->repeat, "repeat the localization N times for timing")
       ->capture_default_str();
   cmd->callback([a] { run(*a); });

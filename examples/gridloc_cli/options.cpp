@@ -66,6 +66,24 @@ double check_arc_depth(double cells) {
   return cells;
 }
 
+void SearchArgs::add_to(CLI::App* cmd) {
+  cmd->add_option("--strategy", strategy, "multires | exhaustive | bnb (exact, fast)")
+      ->capture_default_str();
+  cmd->add_option("--arc-rule", arc_rule, "arc cell on free space: neutral | signed (seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--arc-depth", arc_depth, "radial arc depth, cells each side (0 = seed 001)")
+      ->capture_default_str();
+  cmd->add_option("--threads", threads, "threads scoring headings in parallel (same result)")
+      ->capture_default_str();
+}
+
+void SearchArgs::apply(CorrelationOptions& o) const {
+  o.strategy = parse_strategy(strategy);
+  o.arc_rule = parse_arc_rule(arc_rule);
+  o.sonar.arc_depth_cells = check_arc_depth(arc_depth);
+  o.threads = threads;
+}
+
 std::string data_dir() {
   namespace fs = std::filesystem;
   if (const char* env = std::getenv("GRIDLOC_DATA_DIR")) return env;

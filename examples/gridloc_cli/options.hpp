@@ -1,5 +1,6 @@
 #pragma once
 // Parsing helpers shared by the gridloc subcommands.
+#include <CLI/CLI.hpp>
 #include <string>
 
 #include "gridloc/engine/correlation_estimator.hpp"
@@ -16,6 +17,19 @@ ArcRule parse_arc_rule(const std::string& s);
 std::string to_string(ArcRule r);
 /// Checks --arc-depth (cells, >= 0, finite).
 double check_arc_depth(double cells);
+
+/// The search options `localize` and `eval` share: registered once, applied once.
+struct SearchArgs {
+  std::string strategy = "multires";
+  std::string arc_rule = "neutral";
+  double arc_depth = SonarModelOptions{}.arc_depth_cells;
+  int threads = 1;
+
+  /// Adds --strategy, --arc-rule, --arc-depth and --threads to `cmd`.
+  void add_to(CLI::App* cmd);
+  /// Parses and checks them into `o`; throws gridloc::Error naming the option.
+  void apply(CorrelationOptions& o) const;
+};
 
 /// Folder of the bundled maps: $GRIDLOC_DATA_DIR, else the source tree's maps/, else the
 /// installed share/gridloc/maps.
