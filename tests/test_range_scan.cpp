@@ -44,9 +44,13 @@ TEST(RangeScan, OneBeamHasAnEndCellAndMinusOneBeforeIt) {
 
 TEST(RangeScan, NoReturnGivesFreeSpaceToMaxRange) {
   const RangeScan scan{{0.0, 1.0}, {8.0, 2.0}, 8.0};
-  const SparseLocalGrid g = rasterize_scan(scan, 0.0, kRes);
+  const SparseLocalGrid g = rasterize_scan(scan, 0.0, kRes, {}, {ScanModel::Rays});
   EXPECT_DOUBLE_EQ(sum_of(g, true), 1.0);  // only the second beam hits
   EXPECT_GE(g.extent(), 79);               // the first beam's free cells reach 8 m
+  // Samples: the last of 4 lies at 7/8 of the range.
+  const SparseLocalGrid s = rasterize_scan(scan, 0.0, kRes, {}, {ScanModel::Samples, 4});
+  EXPECT_EQ(s.extent(), 70);
+  EXPECT_NEAR(sum_of(s, false), -2.0, 1e-6);
 }
 
 TEST(RangeScan, ACellHitByTwoBeamsStaysPlusOne) {

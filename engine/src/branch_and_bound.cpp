@@ -1,8 +1,16 @@
 #include "gridloc/engine/branch_and_bound.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 
 #include "gridloc/grids/error.hpp"
@@ -19,12 +27,12 @@ namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
 
-/// A block of 2^h x 2^h translations starting at (ix, iy), for heading it. Its first pose in
-/// lattice order is (it, iy, ix): every other pose has a larger row, or the same row and a
-/// larger column.
+/// A block of 2^h x 2^h translations starting at (ix, iy), times the 2^a headings starting at
+/// it (clipped to the lattice). Its first pose in lattice order is (it, iy, ix): every other
+/// pose has a larger heading, or row, or the same row and a larger column.
 struct Node {
   double bound = 0.0;
-  int it = 0, iy = 0, ix = 0, h = 0;
+  int it = 0, iy = 0, ix = 0, h = 0, a = 0;
 };
 
 bool index_less(int it, int iy, int ix, const LatticePose& b) {
@@ -88,6 +96,30 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
     p.arc_max[static_cast<std::size_t>(h)] = max_pool(arc, 1 << h);
     p.grid_min[static_cast<std::size_t>(h)] = min_pool(global.grid, 1 << h);
   }
+  if (!arc.cells.empty()) {
+    p.arc_max_all = *std::max_element(arc.cells.begin(), arc.cells.end());
+    p.grid_min_all = *std::min_element(global.grid.cells.begin(), global.grid.cells.end());
+  }
+  for (float v : arc.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  for (float v : global.grid.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  auto is_ternary = [](const EvidenceGrid& g) {
+    return std::all_of(g.cells.begin(), g.cells.end(),
+                       [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; });
+  };
+  if (is_ternary(arc) && is_ternary(global.grid)) {  // pooling keeps values: levels are too
+    auto to_int8 = [](const EvidenceGrid& g) {
+      std::vector<std::int8_t> out(g.cells.size());
+      std::transform(g.cells.begin(), g.cells.end(), out.begin(),
+                     [](float v) { return static_cast<std::int8_t>(v); });
+      return out;
+    };
+    p.arc_max8.push_back(to_int8(arc));
+    p.grid_min8.push_back(to_int8(global.grid));
+    for (int h = 1; h <= depth; ++h) {
+      p.arc_max8.push_back(to_int8(p.arc_max[static_cast<std::size_t>(h)]));
+      p.grid_min8.push_back(to_int8(p.grid_min[static_cast<std::size_t>(h)]));
+    }
+  }
   return p;
 }
 
@@ -98,28 +130,434 @@ int bound_depth_for(const Lattice& lattice) {
   return depth;
 }
 
-std::vector<PlacedLocalGrid> place_headings(const Lattice& lattice, const SearchLevel& finest) {
+HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
+    : lattice_(lattice),
+      level_(finest),
+      entries_(std::make_unique<Entry[]>(static_cast<std::size_t>(std::max(lattice.headings, 0)))) {
   if (finest.global == nullptr) throw Error("branch and bound: the search level has no grid");
-  const PaddedGrid& g = *finest.global;
-  // Each heading's local grid, made and placed once (in parallel as finest.threads asks:
-  // each heading is independent, so the result does not depend on it).
-  const auto headings = static_cast<std::size_t>(std::max(lattice.headings, 0));
-  std::vector<PlacedLocalGrid> placed(headings);
-  std::vector<int> extents(headings, 0);
-#pragma omp parallel for schedule(dynamic) num_threads(finest.threads) if (finest.threads > 1)
-  for (int it = 0; it < lattice.headings; ++it) {
-    const SparseLocalGrid local = finest.make_local(lattice.theta(it), Eigen::Vector2d::Zero());
-    extents[static_cast<std::size_t>(it)] = local.size() > 0 ? local.extent() : 0;
-    placed[static_cast<std::size_t>(it)] = place(local, g);
-  }
-  for (std::size_t it = 0; it < headings; ++it) {
-    if (extents[it] > g.pad) {
-      throw Error("branch and bound: local grid extent " + std::to_string(extents[it]) +
-                  " cells (heading " + std::to_string(it) + ") exceeds the padding " +
-                  std::to_string(g.pad));
+  if (finest.points != nullptr) {
+    const double res = finest.global->grid.geometry.resolution;
+    if (finest.points->max_norm / res + 1.0 > finest.global->pad) {
+      std::ostringstream m;
+      m << "branch and bound: the scan's points reach " << finest.points->max_norm
+        << " m, beyond the padding of " << finest.global->pad << " cells";
+      throw Error(m.str());
     }
   }
-  return placed;
+}
+
+const PlacedLocalGrid& HeadingGrids::placed(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.placed_once, [&] {
+    const SparseLocalGrid local = level_.make_local(lattice_.theta(it), Eigen::Vector2d::Zero());
+    const int extent = local.size() > 0 ? local.extent() : 0;
+    if (extent > level_.global->pad) {
+      throw Error("branch and bound: local grid extent " + std::to_string(extent) +
+                  " cells (heading " + std::to_string(it) + ") exceeds the padding " +
+                  std::to_string(level_.global->pad));
+    }
+    e.placed = place(local, *level_.global);
+  });
+  return e.placed;
+}
+
+const HeadingGrids::PointCells& HeadingGrids::point_cells(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.cells_once, [&] {
+    const ScanPoints& p = *level_.points;
+    const double theta = lattice_.theta(it);
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double inv = 1.0 / level_.global->grid.geometry.resolution;
+    const std::ptrdiff_t width = level_.global->grid.width();
+    // Sorted by offset: a bound then walks the grid's rows in order.
+    std::vector<std::pair<std::ptrdiff_t, Eigen::Vector2i>> hits, frees;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Eigen::Vector2i cell = point_cell(p, k, c, s, inv);
+      (k < p.hit_count ? hits : frees).push_back({cell.y() * width + cell.x(), cell});
+    }
+    auto fill = [](auto& items, auto& offset, auto& xs, auto& ys) {
+      std::sort(items.begin(), items.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [o, cell] : items) {
+        offset.push_back(o);
+        xs.push_back(cell.x());
+        ys.push_back(cell.y());
+      }
+    };
+    fill(hits, e.cells.hit_offset, e.cells.hit_x, e.cells.hit_y);
+    fill(frees, e.cells.free_offset, e.cells.free_x, e.cells.free_y);
+  });
+  return e.cells;
+}
+
+void HeadingGrids::make_all() const {
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic) num_threads(level_.threads) if (level_.threads > 1)
+  for (int it = 0; it < lattice_.headings; ++it) {
+    try {
+      placed(it);
+    } catch (...) {
+#pragma omp critical(gridloc_make_all)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+namespace {
+
+/// One branch-and-bound search: the shared best-first queue, the incumbent and the bounds.
+class Search {
+ public:
+  Search(const Lattice& lattice, const HeadingGrids& grids, const BoundPyramid& pyramid,
+         const BranchAndBoundOptions& options)
+      : lat_(lattice), grids_(grids), pyr_(pyramid), opt_(options), g_(*grids.level().global) {
+    points_ = options.heading_intervals ? grids.points() : nullptr;
+    inv_res_ = 1.0 / g_.grid.geometry.resolution;
+    width_ = g_.grid.width();
+    arc_levels_.push_back(g_.arc_view.data());
+    min_levels_.push_back(g_.grid.cells.data());
+    for (int h = 1; h <= pyr_.depth(); ++h) {
+      arc_levels_.push_back(pyr_.arc_max[static_cast<std::size_t>(h)].cells.data());
+      min_levels_.push_back(pyr_.grid_min[static_cast<std::size_t>(h)].cells.data());
+    }
+    for (std::size_t h = 0; h < pyr_.arc_max8.size(); ++h) {
+      arc8_levels_.push_back(pyr_.arc_max8[h].data());
+      min8_levels_.push_back(pyr_.grid_min8[h].data());
+    }
+    if (points_ != nullptr) {
+      double mass = 0.0;
+      for (float w : points_->weight) mass += std::abs(static_cast<double>(w));
+      slack_ = (static_cast<double>(points_->size()) + 4.0) * std::ldexp(1.0, -24) * mass *
+               std::max(1.0f, pyr_.abs_max);
+    }
+    if (opt_.incumbent) {
+      best_ = *opt_.incumbent;
+      found_ = true;
+      best_score_.store(best_.score);
+    }
+    if (opt_.budget_ms > 0.0) {
+      deadline_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double, std::milli>(opt_.budget_ms));
+    }
+  }
+
+  SearchResult run() {
+    const int top = std::min(pyr_.depth(), bound_depth_for(lat_));
+    if (top == 0 && points_ == nullptr) {  // no bound levels: the exhaustive search
+      Worker w(*this);
+      for (int it = 0; it < lat_.headings; ++it) {
+        for (int iy = lat_.y0; iy <= lat_.y1; ++iy) {
+          for (int ix = lat_.x0; ix <= lat_.x1; ++ix) w.score_leaf(it, iy, ix);
+        }
+      }
+      w.merge();
+      return finish(false);
+    }
+    // Heading intervals at the top: the widest whose widening stays within half a block.
+    int a_top = 0;
+    if (points_ != nullptr && opt_.heading_intervals) {
+      while ((1 << a_top) < lat_.headings &&
+             2 * widening(points_->max_norm, half_span(a_top + 1)) <= (1 << top)) {
+        ++a_top;
+      }
+    }
+    {
+      Worker w(*this);
+      const int side = 1 << top;
+      for (int it = 0; it < lat_.headings; it += 1 << a_top) {
+        for (int iy = lat_.y0; iy <= lat_.y1; iy += side) {
+          for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
+        }
+      }
+      push_all(w.children);
+      w.merge();
+    }
+    const int threads = std::max(1, opt_.threads);
+    if (threads == 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t) pool.emplace_back([this] { work(); });
+      work();
+      for (auto& t : pool) t.join();
+    }
+    if (error_) std::rethrow_exception(error_);
+    return finish(stopped_);
+  }
+
+ private:
+  /// What one thread collects before merging it under the lock.
+  struct Worker {
+    explicit Worker(Search& s) : search(s) {}
+    Search& search;
+    std::vector<Node> children;
+    std::vector<LatticePose> scored;
+    long long cells = 0;
+
+    void score_leaf(int it, int iy, int ix) {
+      if (search.opt_.exclude && search.opt_.exclude->contains(ix, iy, it)) return;
+      const PlacedLocalGrid& local = search.grids_.placed(it);
+      const LatticePose c{ix, iy, it, score(search.g_, local, ix, iy)};
+      cells += static_cast<long long>(local.value.size());
+      scored.push_back(c);
+      // Lock-free reject of the usual case: strictly worse than the incumbent.
+      if (c.score < search.best_score_.load(std::memory_order_relaxed)) return;
+      std::lock_guard<std::mutex> lock(search.mu_);
+      if (!search.found_ || better(c, search.best_)) {
+        search.best_ = c;
+        search.found_ = true;
+        search.best_score_.store(c.score, std::memory_order_relaxed);
+      }
+    }
+
+    /// Bounds (or scores, for a single pose) the child node and keeps it if promising.
+    void add_child(int it, int a, int iy, int ix, int h) {
+      const Lattice& lat = search.lat_;
+      if (a == 0 && h == 0) {
+        score_leaf(it, iy, ix);
+        return;
+      }
+      const int it1 = std::min(it + (1 << a) - 1, lat.headings - 1);
+      const int side = 1 << h;
+      if (search.opt_.exclude &&
+          search.opt_.exclude->contains_block(it, it1, ix, iy, std::min(ix + side - 1, lat.x1),
+                                              std::min(iy + side - 1, lat.y1))) {
+        return;
+      }
+      Node n{0.0, it, iy, ix, h, a};
+      if (a == 0) {
+        const PlacedLocalGrid& local = search.grids_.placed(it);
+        n.bound = block_bound(search.pyr_, local, h, ix, iy);
+        cells += static_cast<long long>(local.value.size());
+      } else {
+        n.bound = search.interval_bound(n, it1);
+        cells += static_cast<long long>(search.points_->size());
+      }
+      if (search.promising_fast(n)) children.push_back(n);
+    }
+
+    void expand(const Node& n) {
+      const Lattice& lat = search.lat_;
+      if (n.a > 0 &&
+          (n.h == 0 ||
+           2 * search.widening(search.points_->max_norm, search.half_span(n.a)) >= (1 << n.h))) {
+        const int half = 1 << (n.a - 1);
+        add_child(n.it, n.a - 1, n.iy, n.ix, n.h);
+        if (n.it + half < lat.headings) add_child(n.it + half, n.a - 1, n.iy, n.ix, n.h);
+        return;
+      }
+      const int half = 1 << (n.h - 1);
+      const int ix_end = std::min(n.ix + 2 * half - 1, lat.x1);
+      const int iy_end = std::min(n.iy + 2 * half - 1, lat.y1);
+      for (int iy = n.iy; iy <= iy_end; iy += half) {
+        for (int ix = n.ix; ix <= ix_end; ix += half) add_child(n.it, n.a, iy, ix, n.h - 1);
+      }
+    }
+
+    /// Hands the scored leaves and counters to the search (under its lock).
+    void merge() {
+      std::lock_guard<std::mutex> lock(search.mu_);
+      search.result_.poses_scored += static_cast<long long>(scored.size());
+      search.result_.cells_scored += cells;
+      search.result_.scored.insert(search.result_.scored.end(), scored.begin(), scored.end());
+      scored.clear();
+      cells = 0;
+    }
+  };
+
+  /// Half the angle an interval of 2^a headings spans around its middle heading, in steps.
+  static int half_span(int a) { return a == 0 ? 0 : 1 << (a - 1); }
+  /// Cells a point at `norm` (m) can move when the heading turns by up to `steps` steps.
+  int widening(double norm, int steps) const {
+    if (steps == 0) return 0;
+    return static_cast<int>(norm * steps * std::abs(lat_.step_theta) * inv_res_ + 1e-6) + 1;
+  }
+
+  /// Upper bound of every pose of node n (headings [n.it, it1]) from its rigid points.
+  double interval_bound(const Node& n, int it1) const {
+    const int ref = (n.it + it1) / 2;
+    const int w = widening(points_->max_norm, std::max(ref - n.it, it1 - ref));
+    const auto& cells = grids_.point_cells(ref);
+    const double sums = pyr_.ternary() ? interval_sum(arc8_levels_, min8_levels_, n, w, cells)
+                                       : interval_sum(arc_levels_, min_levels_, n, w, cells);
+    return sums + slack_;
+  }
+
+  /// The heading-interval bound's sums (see interval_bound), over grids of T.
+  template <typename T>
+  double interval_sum(const std::vector<const T*>& arc, const std::vector<const T*>& min,
+                      const Node& n, int w, const HeadingGrids::PointCells& c) const {
+    const int level = std::bit_width(static_cast<unsigned>((1 << n.h) + 2 * w - 1));
+    const double free_weight =
+        points_->size() > points_->hit_count ? points_->weight[points_->hit_count] : 0.0;
+    double positive = 0.0, negative = 0.0;
+    if (level > pyr_.depth()) {  // wider than any level: the whole grid's extremes
+      positive = static_cast<double>(c.hit_offset.size()) * std::max(pyr_.arc_max_all, 0.0f);
+      negative = static_cast<double>(c.free_offset.size()) * std::min(pyr_.grid_min_all, 0.0f);
+      return positive + free_weight * negative;
+    }
+    // Pooled cells cover [x, x + 2^level): read w cells before the block.
+    const T* arc_level = arc[static_cast<std::size_t>(level)];
+    const T* min_level = min[static_cast<std::size_t>(level)];
+    const int bx = n.ix + g_.pad - w, by = n.iy + g_.pad - w;
+    if (n.ix >= w && n.iy >= w) {  // every read lies inside the padded grid: flat offsets
+      const std::ptrdiff_t base = static_cast<std::ptrdiff_t>(by) * width_ + bx;
+      for (std::ptrdiff_t o : c.hit_offset) {
+        positive += std::max(static_cast<float>(arc_level[base + o]), 0.0f);
+      }
+      for (std::ptrdiff_t o : c.free_offset) {
+        negative += std::min(static_cast<float>(min_level[base + o]), 0.0f);
+      }
+    } else {  // near the map's edge: a read before the padded grid starts at its edge
+      auto at = [&](int x, int y) {  // (dropping cells that do not exist)
+        return static_cast<std::ptrdiff_t>(std::max(0, by + y)) * width_ + std::max(0, bx + x);
+      };
+      for (std::size_t k = 0; k < c.hit_x.size(); ++k) {
+        positive += std::max(static_cast<float>(arc_level[at(c.hit_x[k], c.hit_y[k])]), 0.0f);
+      }
+      for (std::size_t k = 0; k < c.free_x.size(); ++k) {
+        negative += std::min(static_cast<float>(min_level[at(c.free_x[k], c.free_y[k])]), 0.0f);
+      }
+    }
+    return positive + free_weight * negative;
+  }
+
+  /// Could the node hold a pose better than the incumbent? Reads the incumbent's score
+  /// without the lock first: it only ever rises, so a stale value never drops a node that
+  /// could win; only a bound equal to it needs the exact test.
+  bool promising_fast(const Node& n) const {
+    const double b = best_score_.load(std::memory_order_relaxed);
+    if (n.bound < b) return false;
+    if (n.bound > b) return true;
+    std::lock_guard<std::mutex> lock(mu_);
+    return promising(n);
+  }
+  /// Exact test, under the lock. An equal score wins only at a lower index, and the node's
+  /// lowest index is its first pose.
+  bool promising(const Node& n) const {
+    if (!found_) return true;
+    if (n.bound != best_.score) return n.bound > best_.score;
+    return index_less(n.it, n.iy, n.ix, best_);
+  }
+
+  static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
+
+  void push_all(std::vector<Node>& nodes) {
+    std::lock_guard<std::mutex> lock(mu_);
+    for (const Node& n : nodes) {
+      open_.push_back(n);
+      std::push_heap(open_.begin(), open_.end(), heap_less);
+    }
+    nodes.clear();
+  }
+
+  /// One thread's loop: pop the best open node, expand it outside the lock, push its children.
+  void work() {
+    Worker w(*this);
+    try {
+      for (;;) {
+        Node n;
+        {
+          std::unique_lock<std::mutex> lock(mu_);
+          for (;;) {
+            if (error_ || stopped_) break;
+            if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
+              stopped_ = true;
+              break;
+            }
+            const bool can_pop = !open_.empty() && promising(open_.front());
+            if (can_pop) break;
+            if (busy_ == 0) break;  // nothing open can win and nobody will add more: done
+            lock.unlock();
+            std::this_thread::yield();
+            lock.lock();
+          }
+          if (error_ || stopped_ || open_.empty() || !promising(open_.front())) break;
+          std::pop_heap(open_.begin(), open_.end(), heap_less);
+          n = open_.back();
+          open_.pop_back();
+          ++busy_;
+        }
+        w.expand(n);
+        {
+          std::lock_guard<std::mutex> lock(mu_);
+          for (const Node& c : w.children) {
+            if (!promising(c)) continue;
+            open_.push_back(c);
+            std::push_heap(open_.begin(), open_.end(), heap_less);
+          }
+          --busy_;
+        }
+        w.children.clear();
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (!error_) error_ = std::current_exception();
+      --busy_;
+    }
+    w.merge();
+  }
+
+  SearchResult finish(bool stopped) {
+    if (stopped && !found_ && !open_.empty()) {
+      // Out of time before any pose was scored: dive from the best open node to a leaf.
+      Worker w(*this);
+      Node n = open_.front();
+      while (!found_) {
+        w.expand(n);
+        if (found_ || w.children.empty()) break;
+        n = *std::min_element(w.children.begin(), w.children.end(), visit_before);
+        w.children.clear();
+      }
+      w.merge();
+    }
+    result_.best = best_;
+    result_.proven_optimal = !stopped || open_.empty() || !promising(open_.front());
+    result_.upper_bound = best_.score;
+    if (!result_.proven_optimal) {
+      for (const Node& n : open_) result_.upper_bound = std::max(result_.upper_bound, n.bound);
+    }
+    return std::move(result_);
+  }
+
+  const Lattice& lat_;
+  const HeadingGrids& grids_;
+  const BoundPyramid& pyr_;
+  const BranchAndBoundOptions& opt_;
+  const PaddedGrid& g_;
+  const ScanPoints* points_ = nullptr;
+  double inv_res_ = 1.0;
+  std::ptrdiff_t width_ = 0;
+  double slack_ = 0.0;
+  std::vector<const float*> arc_levels_, min_levels_;
+  std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
+
+  mutable std::mutex mu_;  // guards everything below
+  std::vector<Node> open_;
+  LatticePose best_;
+  bool found_ = false;
+  std::atomic<double> best_score_{-std::numeric_limits<double>::infinity()};
+  int busy_ = 0;
+  bool stopped_ = false;
+  std::exception_ptr error_;
+  SearchResult result_;
+};
+
+}  // namespace
+
+SearchResult search_branch_and_bound(const Lattice& lattice, const HeadingGrids& grids,
+                                     const BoundPyramid& pyramid,
+                                     const BranchAndBoundOptions& options) {
+  validate(lattice, *grids.level().global, pyramid);
+  const Lattice& own = grids.lattice();
+  if (own.headings != lattice.headings || own.theta0 != lattice.theta0 ||
+      own.step_theta != lattice.step_theta) {
+    throw Error("branch and bound: the heading grids were made for another lattice");
+  }
+  return Search(lattice, grids, pyramid, options).run();
 }
 
 SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& finest,
@@ -127,104 +565,11 @@ SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& 
                                      const std::optional<Exclusion>& exclude) {
   if (finest.global == nullptr) throw Error("branch and bound: the search level has no grid");
   validate(lattice, *finest.global, pyramid);
-  return search_branch_and_bound(lattice, *finest.global, place_headings(lattice, finest), pyramid,
-                                 exclude);
-}
-
-SearchResult search_branch_and_bound(const Lattice& lattice, const PaddedGrid& g,
-                                     const std::vector<PlacedLocalGrid>& placed,
-                                     const BoundPyramid& pyramid,
-                                     const std::optional<Exclusion>& exclude) {
-  validate(lattice, g, pyramid);
-  if (placed.size() != static_cast<std::size_t>(lattice.headings)) {
-    throw Error("branch and bound: " + std::to_string(placed.size()) + " placed local grids for " +
-                std::to_string(lattice.headings) + " headings");
-  }
-  SearchResult result;
-  bool found = false;
-  LatticePose& best = result.best;
-  auto score_leaf = [&](int it, int iy, int ix) {
-    if (exclude && exclude->contains(ix, iy, it)) return;
-    const PlacedLocalGrid& local = placed[static_cast<std::size_t>(it)];
-    const LatticePose c{ix, iy, it, score(g, local, ix, iy)};
-    ++result.poses_scored;
-    result.cells_scored += static_cast<long long>(local.value.size());
-    result.scored.push_back(c);
-    if (!found || better(c, best)) {
-      best = c;
-      found = true;
-    }
-  };
-  auto make_node = [&](int it, int iy, int ix, int h) {
-    const PlacedLocalGrid& local = placed[static_cast<std::size_t>(it)];
-    result.cells_scored += static_cast<long long>(local.value.size());
-    return Node{block_bound(pyramid, local, h, ix, iy), it, iy, ix, h};
-  };
-  // Could the block hold a pose better than `best`? Its poses score <= bound; an equal score
-  // wins only at a lower index, and the block's lowest index is its first pose.
-  auto promising = [&](const Node& n) {
-    if (!found) return true;
-    if (n.bound != best.score) return n.bound > best.score;
-    return index_less(n.it, n.iy, n.ix, best);
-  };
-
-  // A deeper pyramid than the lattice needs only loosens the top bounds: start where one
-  // block per heading covers the lattice.
-  const int top = std::min(pyramid.depth(), bound_depth_for(lattice));
-  if (top == 0) {  // no bound levels: the exhaustive search
-    for (int it = 0; it < lattice.headings; ++it) {
-      for (int iy = lattice.y0; iy <= lattice.y1; ++iy) {
-        for (int ix = lattice.x0; ix <= lattice.x1; ++ix) score_leaf(it, iy, ix);
-      }
-    }
-    return result;
-  }
-
-  // Top-level blocks of every heading, tiling the lattice from (x0, y0). Blocks and their
-  // children start inside the lattice (children past x1 or y1 are dropped), so every bound
-  // reads inside the padded grid and every leaf scored is a lattice pose.
-  // Best first: `open` is a heap whose front is the block to open next (highest bound, then
-  // lowest first pose: the order promising() tests in), so once the front cannot win, no
-  // block can: stop.
-  std::vector<Node> open;
-  const int side = 1 << top;
-  for (int it = 0; it < lattice.headings; ++it) {
-    for (int iy = lattice.y0; iy <= lattice.y1; iy += side) {
-      for (int ix = lattice.x0; ix <= lattice.x1; ix += side) {
-        open.push_back(make_node(it, iy, ix, top));
-      }
-    }
-  }
-  auto heap_less = [](const Node& a, const Node& b) { return visit_before(b, a); };
-  std::make_heap(open.begin(), open.end(), heap_less);
-
-  while (!open.empty() && promising(open.front())) {
-    std::pop_heap(open.begin(), open.end(), heap_less);
-    const Node n = open.back();
-    open.pop_back();
-    const int half = 1 << (n.h - 1);
-    const int ix_end = std::min(n.ix + 2 * half - 1, lattice.x1);
-    const int iy_end = std::min(n.iy + 2 * half - 1, lattice.y1);
-    for (int iy = n.iy; iy <= iy_end; iy += half) {
-      for (int ix = n.ix; ix <= ix_end; ix += half) {
-        if (n.h == 1) {  // children are leaves: score them exactly
-          score_leaf(n.it, iy, ix);
-          continue;
-        }
-        const int child_side = half;  // the child block's side
-        if (exclude &&
-            exclude->contains_block(n.it, ix, iy, std::min(ix + child_side - 1, lattice.x1),
-                                    std::min(iy + child_side - 1, lattice.y1))) {
-          continue;
-        }
-        const Node c = make_node(n.it, iy, ix, n.h - 1);
-        if (!promising(c)) continue;
-        open.push_back(c);
-        std::push_heap(open.begin(), open.end(), heap_less);
-      }
-    }
-  }
-  return result;
+  const HeadingGrids grids(lattice, finest);
+  grids.make_all();  // in parallel with finest.threads; the search itself runs on one
+  BranchAndBoundOptions options;
+  options.exclude = exclude;
+  return search_branch_and_bound(lattice, grids, pyramid, options);
 }
 
 }  // namespace gridloc

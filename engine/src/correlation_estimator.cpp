@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "gridloc/grids/error.hpp"
 
@@ -75,6 +78,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.levels));
   }
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
+  validate(options_.scan);
   if (options_.threads < 1 || options_.threads > 256) {
     throw Error("correlation options: threads must be in [1, 256], got " +
                 std::to_string(options_.threads));
@@ -97,6 +101,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     const PaddedGrid& finest = levels_.front();
     int depth = 0;
     while ((1 << depth) < std::max(finest.width, finest.height)) ++depth;
+    ++depth;  // heading intervals widen blocks up to twice their side
     pyramid_ = make_bound_pyramid(finest, depth);
   }
 }
@@ -160,31 +165,44 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   lattice.theta0 = prior.theta - nt * window.step_theta;
   lattice.step_theta = window.step_theta;
 
+  // A scan under a point model: its points once, rotated per heading.
+  std::optional<ScanPoints> points;
+  if (observation.scan && options_.scan.model != ScanModel::Rays) {
+    points = scan_points(*observation.scan, options_.scan);
+  }
+  const ScanPoints* points_ptr = points ? &*points : nullptr;
+
   std::vector<SearchLevel> levels;
   const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < level_count; ++l) {
     levels.push_back(
         {&levels_[static_cast<std::size_t>(l)],
          [&, level_res = level_resolution(res, l)](double theta, const Eigen::Vector2d& centre) {
-           return local_grid(observation, theta, level_res, centre);
+           return local_grid(observation, points_ptr, theta, level_res, centre);
          },
          options_.threads});
   }
+  if (points) levels.front().points = points_ptr;  // rigid points: heading-interval bounds
   SearchResult r;
-  std::vector<PlacedLocalGrid> placed;  // branch and bound: shared by its two searches
+  std::optional<HeadingGrids> grids;  // branch and bound: shared by its two searches
+  BranchAndBoundOptions bnb;
+  bnb.threads = options_.threads;
+  bnb.budget_ms = options_.budget_ms;
+  bnb.heading_intervals = options_.heading_intervals;
   switch (options_.strategy) {
     case SearchStrategy::Exhaustive:
       r = search_exhaustive(lattice, levels.front());
       break;
     case SearchStrategy::Multires:
       r = search_multires(lattice, levels, options_.keep);
+      r.proven_optimal = false;
+      r.upper_bound = std::numeric_limits<double>::quiet_NaN();
       break;
     case SearchStrategy::BranchAndBound:
-      placed = place_headings(lattice, levels.front());
-      r = search_branch_and_bound(lattice, levels_.front(), placed, pyramid_);
+      grids.emplace(lattice, levels.front());
+      r = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
       break;
   }
-
   auto to_world = [&](double ix, double iy, double it) {
     return map_.geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
   };
@@ -198,17 +216,36 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   }
   e.score = r.best.score;
   const double mass =
-      local_grid(observation, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero()).mass();
+      local_grid(observation, points_ptr, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero())
+          .mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
   std::vector<LatticePose> peaks;
   if (options_.strategy == SearchStrategy::BranchAndBound) {
     // Branch and bound scores few poses: find the best distinct pose exactly, by a second
-    // search that leaves out the winner's neighbourhood.
-    const SearchResult second =
-        search_branch_and_bound(lattice, levels_.front(), placed, pyramid_,
-                                neighbourhood(r.best, res, window.step_theta, options_));
+    // search that leaves out the winner's neighbourhood, starting from the best pose outside
+    // it that the first search scored.
+    bnb.exclude = neighbourhood(r.best, res, window.step_theta, options_);
+    for (const auto& p : r.scored) {
+      if (bnb.exclude->contains(p.ix, p.iy, p.it)) continue;
+      if (!bnb.incumbent || p.score > bnb.incumbent->score ||
+          (p.score == bnb.incumbent->score &&
+           std::tie(p.it, p.iy, p.ix) <
+               std::tie(bnb.incumbent->it, bnb.incumbent->iy, bnb.incumbent->ix))) {
+        bnb.incumbent = p;
+      }
+    }
     peaks.push_back(r.best);
-    if (second.poses_scored > 0) peaks.push_back(second.best);
+    SearchResult second;
+    second.best = bnb.incumbent.value_or(LatticePose{});
+    if (options_.budget_ms > 0.0) {  // the second search gets what the first left of the budget
+      bnb.budget_ms = options_.budget_ms - std::chrono::duration<double, std::milli>(
+                                               std::chrono::steady_clock::now() - start)
+                                               .count();
+    }
+    if (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0) {
+      second = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
+    }
+    if (bnb.incumbent || second.poses_scored > 0) peaks.push_back(second.best);
     r.poses_scored += second.poses_scored;
     r.cells_scored += second.cells_scored;
   } else {
@@ -220,16 +257,22 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   e.stats.poses_scored = r.poses_scored;
   e.stats.cells_scored = r.cells_scored;
   e.stats.levels = level_count;
+  e.stats.proven_optimal = r.proven_optimal;
+  e.stats.upper_bound = r.upper_bound;
   e.stats.elapsed_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return e;
 }
 
-SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation, double theta,
+SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation,
+                                                 const ScanPoints* points, double theta,
                                                  double resolution,
                                                  const Eigen::Vector2d& centre) const {
-  // A scan is a set of rays, oriented by construction; the sonar ring follows options.local.
-  if (observation.scan) return rasterize_scan(*observation.scan, theta, resolution, centre);
+  // A scan is oriented by construction; the sonar ring follows options.local.
+  if (points != nullptr) return rasterize_points(*points, theta, resolution, centre);
+  if (observation.scan) {
+    return rasterize_scan(*observation.scan, theta, resolution, centre, options_.scan);
+  }
   return rasterize(ring_, observation.ranges, theta, resolution, options_.local, centre,
                    options_.sonar);
 }

@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include "commands.hpp"
 #include "gridloc/grids/geometry.hpp"
 
@@ -12,17 +14,21 @@ nlohmann::json to_json(const Estimate& e) {
   for (const auto& h : e.alternatives) {
     alternatives.push_back({{"pose", to_json(h.pose)}, {"score", h.score}});
   }
-  return {{"pose", to_json(e.pose)},
-          {"theta_deg", rad2deg(e.pose.theta)},
-          {"score", e.score},
-          {"normalized_score", e.normalized_score},
-          {"second_score", e.second_score},
-          {"confidence", e.confidence},
-          {"alternatives", alternatives},
-          {"stats",
-           {{"poses_scored", e.stats.poses_scored},
-            {"cells_scored", e.stats.cells_scored},
-            {"levels", e.stats.levels}}}};
+  return {
+      {"pose", to_json(e.pose)},
+      {"theta_deg", rad2deg(e.pose.theta)},
+      {"score", e.score},
+      {"normalized_score", e.normalized_score},
+      {"second_score", e.second_score},
+      {"confidence", e.confidence},
+      {"alternatives", alternatives},
+      {"stats",
+       {{"poses_scored", e.stats.poses_scored},
+        {"cells_scored", e.stats.cells_scored},
+        {"levels", e.stats.levels},
+        {"proven_optimal", e.stats.proven_optimal},
+        {"upper_bound", std::isnan(e.stats.upper_bound) ? nlohmann::json(nullptr)
+                                                        : nlohmann::json(e.stats.upper_bound)}}}};
 }
 
 }  // namespace gridloc::cli

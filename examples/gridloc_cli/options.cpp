@@ -59,6 +59,13 @@ std::string to_string(ArcRule r) {
   return r == ArcRule::Neutral ? "neutral" : "signed";
 }
 
+ScanModel parse_scan_model(const std::string& s) {
+  if (s == "samples") return ScanModel::Samples;
+  if (s == "rays") return ScanModel::Rays;
+  if (s == "hits") return ScanModel::Hits;
+  throw Error("--scan-model must be samples, rays or hits, not '" + s + "'");
+}
+
 double check_arc_depth(double cells) {
   if (!(cells >= 0.0) || !std::isfinite(cells)) {
     throw Error("--arc-depth must be a finite number of cells >= 0, got " + std::to_string(cells));
@@ -75,6 +82,12 @@ void SearchArgs::add_to(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_option("--threads", threads, "threads scoring headings in parallel (same result)")
       ->capture_default_str();
+  cmd->add_option("--scan-model", scan_model,
+                  "scan local grid: samples (end cells + free samples) | rays (every crossed "
+                  "cell) | hits (end cells only)")
+      ->capture_default_str();
+  cmd->add_option("--free-samples", free_samples, "free samples per beam (--scan-model samples)")
+      ->capture_default_str();
 }
 
 void SearchArgs::apply(CorrelationOptions& o) const {
@@ -82,6 +95,13 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   o.arc_rule = parse_arc_rule(arc_rule);
   o.sonar.arc_depth_cells = check_arc_depth(arc_depth);
   o.threads = threads;
+  o.scan.model = parse_scan_model(scan_model);
+  o.scan.free_samples = free_samples;
+  try {
+    validate(o.scan);
+  } catch (const Error&) {
+    throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));
+  }
 }
 
 std::string data_dir() {

@@ -14,6 +14,7 @@ LocalModel parse_local(const std::string& s);
 GlobalModel parse_global(const std::string& s);
 SearchStrategy parse_strategy(const std::string& s);
 ArcRule parse_arc_rule(const std::string& s);
+ScanModel parse_scan_model(const std::string& s);
 std::string to_string(ArcRule r);
 /// Checks --arc-depth (cells, >= 0, finite).
 double check_arc_depth(double cells);
@@ -24,8 +25,10 @@ struct SearchArgs {
   std::string arc_rule = "neutral";
   double arc_depth = SonarModelOptions{}.arc_depth_cells;
   int threads = 1;
+  std::string scan_model = "samples";
+  int free_samples = ScanModelOptions{}.free_samples;
 
-  /// Adds --strategy, --arc-rule, --arc-depth and --threads to `cmd`.
+  /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model and --free-samples.
   void add_to(CLI::App* cmd);
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;

@@ -62,27 +62,45 @@ class Canvas {
     SparseLocalGrid g;
     g.resolution = res_;
     g.theta = theta;
-    for (int row = y_min_; row <= y_max_; ++row) {
-      const int begin = row * side_;
-      for (int idx = begin + x_min_; idx <= begin + x_max_; ++idx) {
-        if (!written_[idx]) continue;
-        const float v = arc_[idx] > 0.0f ? arc_[idx] : free_[idx];
-        if (v != 0.0f) {
-          g.dx.push_back(idx - begin - half_);
-          g.dy.push_back(row - half_);
-          g.value.push_back(v);
+    g.dx.reserve(touched_.size());
+    g.dy.reserve(touched_.size());
+    g.value.reserve(touched_.size());
+    auto emit = [&](int idx) {
+      const int row = idx / side_;
+      const float v = arc_[idx] > 0.0f ? arc_[idx] : free_[idx];
+      if (v != 0.0f) {
+        g.dx.push_back(idx - row * side_ - half_);
+        g.dy.push_back(row - half_);
+        g.value.push_back(v);
+      }
+      arc_[idx] = free_[idx] = 0.0f;
+      written_[idx] = 0;
+    };
+    if (touched_.size() * 64 < static_cast<std::size_t>(side_) * side_) {
+      // Sparse (scan points): sorting the written cells beats walking their bounding box.
+      radix_sort(touched_);
+      for (int idx : touched_) emit(idx);
+    } else {
+      for (int idx : touched_) {
+        const int row = idx / side_, col = idx - row * side_;
+        x_min_ = std::min(x_min_, col), x_max_ = std::max(x_max_, col);
+        y_min_ = std::min(y_min_, row), y_max_ = std::max(y_max_, row);
+      }
+      for (int row = y_min_; row <= y_max_; ++row) {
+        const int begin = row * side_;
+        for (int idx = begin + x_min_; idx <= begin + x_max_; ++idx) {
+          if (written_[idx]) emit(idx);
         }
-        arc_[idx] = free_[idx] = 0.0f;
-        written_[idx] = 0;
       }
     }
+    touched_.clear();
     reset_bounds();
     return g;
   }
 
  private:
   void prepare(int half, double resolution) {
-    if (y_max_ >= 0) collect(0.0);  // a previous call that threw left cells behind
+    if (!touched_.empty()) collect(0.0);  // a previous call that threw left cells behind
     res_ = resolution;
     inv_res_ = 1.0 / resolution;
     if (half > half_) {  // grow only: levels of different resolutions share one canvas
@@ -106,12 +124,25 @@ class Canvas {
     x_max_ = y_max_ = -1;
   }
   int touch(int idx) {
-    if (written_[idx]) return idx;  // bounds already cover it (and saves a division)
-    written_[idx] = 1;
-    const int row = idx / side_, col = idx - row * side_;
-    x_min_ = std::min(x_min_, col), x_max_ = std::max(x_max_, col);
-    y_min_ = std::min(y_min_, row), y_max_ = std::max(y_max_, row);
+    if (!written_[idx]) {
+      written_[idx] = 1;
+      touched_.push_back(idx);
+    }
     return idx;
+  }
+
+  /// Sorts non-negative ints by 11-bit digits, least significant first (a few passes over
+  /// a few hundred cells, where std::sort's comparisons cost more).
+  void radix_sort(std::vector<int>& v) {
+    scratch_.resize(v.size());
+    const unsigned top = static_cast<unsigned>(side_) * static_cast<unsigned>(side_);
+    for (unsigned shift = 0; shift < 32 && (top >> shift) > 0; shift += 11) {
+      std::size_t count[2049] = {};
+      for (int x : v) ++count[((static_cast<unsigned>(x) >> shift) & 2047u) + 1];
+      for (std::size_t b = 1; b < 2049; ++b) count[b] += count[b - 1];
+      for (int x : v) scratch_[count[(static_cast<unsigned>(x) >> shift) & 2047u]++] = x;
+      v.swap(scratch_);
+    }
   }
 
   double res_ = 0.1;
@@ -123,6 +154,8 @@ class Canvas {
   std::vector<float> arc_;
   std::vector<float> free_;
   std::vector<unsigned char> written_;
+  std::vector<int> touched_;  ///< cells written since the last collect, in write order
+  std::vector<int> scratch_;
   std::vector<std::uint32_t> stamp_;
 };
 

@@ -98,8 +98,75 @@ RangeScan load_scan_csv(const std::string& path, double max_range) {
   return scan;
 }
 
+void validate(const ScanModelOptions& options) {
+  if (options.model == ScanModel::Samples &&
+      (options.free_samples < 1 || options.free_samples > 1000)) {
+    throw Error("scan model: free_samples must lie in [1, 1000], got " +
+                std::to_string(options.free_samples));
+  }
+}
+
+ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options) {
+  validate(options);
+  if (options.model == ScanModel::Rays) {
+    throw Error("scan model: the ray model marks every crossed cell; it has no rigid points");
+  }
+  const int samples = options.model == ScanModel::Samples ? options.free_samples : 0;
+  ScanPoints p;
+  const std::size_t n = scan.ranges.size();
+  p.x.reserve(n * static_cast<std::size_t>(1 + samples));
+  p.y.reserve(p.x.capacity());
+  p.norm.reserve(p.x.capacity());
+  p.weight.reserve(p.x.capacity());
+  auto add = [&](double r, double a, float w) {
+    p.x.push_back(r * std::cos(a));
+    p.y.push_back(r * std::sin(a));
+    p.norm.push_back(r);
+    p.weight.push_back(w);
+    p.max_norm = std::max(p.max_norm, r);
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    if (scan.ranges[k] < scan.max_range) add(scan.ranges[k], scan.angles[k], 1.0f);
+  }
+  p.hit_count = p.size();
+  if (samples > 0) {
+    // The midpoints of `samples` equal pieces of the free part of each beam.
+    const float w = -1.0f / static_cast<float>(samples);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = std::min(scan.ranges[k], scan.max_range);
+      for (int j = 0; j < samples; ++j) add(r * (j + 0.5) / samples, scan.angles[k], w);
+    }
+  }
+  return p;
+}
+
+SparseLocalGrid rasterize_points(const ScanPoints& points, double theta, double resolution,
+                                 const Eigen::Vector2d& centre) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("local grid resolution must be positive, got " + std::to_string(resolution));
+  }
+  const double inv = 1.0 / resolution;
+  const double cx = centre.x() * inv, cy = centre.y() * inv;
+  detail::Canvas& canvas = detail::Canvas::for_this_thread(
+      static_cast<int>(std::ceil(points.max_norm * inv + std::hypot(cx, cy))) + 2, resolution);
+  const double c = std::cos(theta), s = std::sin(theta);
+  for (std::size_t k = points.hit_count; k < points.size(); ++k) {
+    const Eigen::Vector2i cell = point_cell(points, k, c, s, inv, cx, cy);
+    canvas.add_free(canvas.index_of_cell(cell.x(), cell.y()), points.weight[k]);
+  }
+  for (std::size_t k = 0; k < points.hit_count; ++k) {
+    const Eigen::Vector2i cell = point_cell(points, k, c, s, inv, cx, cy);
+    canvas.set(canvas.index_of_cell(cell.x(), cell.y()), 1.0f, 0.0f);
+  }
+  return canvas.collect(theta);
+}
+
 SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resolution,
-                               const Eigen::Vector2d& centre) {
+                               const Eigen::Vector2d& centre, const ScanModelOptions& options) {
+  validate(options);
+  if (options.model != ScanModel::Rays) {
+    return rasterize_points(scan_points(scan, options), theta, resolution, centre);
+  }
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("local grid resolution must be positive, got " + std::to_string(resolution));
   }

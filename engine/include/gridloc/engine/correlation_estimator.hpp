@@ -7,13 +7,14 @@
 #include "gridloc/engine/correlation_search.hpp"
 #include "gridloc/engine/estimator.hpp"
 #include "gridloc/grids/evidence.hpp"
+#include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/sonar_model.hpp"
 #include "gridloc/sensors/sonar_ring.hpp"
 
 namespace gridloc {
 
 /// Exhaustive and BranchAndBound are exact (the same winner, ties to the lowest index);
-/// Multires (seed 001 §2) is fast but may miss the winner when a coarse level misleads it.
+/// Multires (seed 001 §2) may miss the winner when a coarse level misleads it.
 enum class SearchStrategy { Exhaustive, Multires, BranchAndBound };
 
 struct CorrelationOptions {
@@ -21,11 +22,18 @@ struct CorrelationOptions {
   GlobalModel global = GlobalModel::Thinned;  ///< thinned (seed 001 §5) or raw (baseline)
   SearchStrategy strategy = SearchStrategy::Multires;
   ArcRule arc_rule = ArcRule::Neutral;  ///< how arc cells score on free space (see ArcRule)
-  SonarModelOptions sonar;              ///< local grid model (arc depth)
+  SonarModelOptions sonar;              ///< sonar local grid model (arc depth)
+  ScanModelOptions scan;                ///< scan local grid model (which cells a beam marks)
   double resolution = 0.1;              ///< finest grid cell = translation step (m)
   int levels = 3;                       ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
   int keep = 8;                         ///< poses kept per level for the next finer one
-  int threads = 1;     ///< OpenMP threads for scoring (headings in parallel); same result
+  int threads = 1;  ///< threads scoring headings / expanding blocks in parallel; same result
+  /// Branch and bound only: stop the search after about this many milliseconds and return
+  /// the best pose so far (Estimate::stats says whether it is proven optimal); 0 = no limit.
+  double budget_ms = 0.0;
+  /// Branch and bound only: bound intervals of headings of a scan, not only single headings
+  /// (BranchAndBoundOptions::heading_intervals). Exact either way.
+  bool heading_intervals = false;
   bool refine = true;  ///< sub-cell refinement of the winner (see refine())
   /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
   /// reach; set it to a laser's max range to localize scans.
@@ -59,9 +67,10 @@ class CorrelationEstimator final : public Estimator {
   const PaddedGrid& level(int l) const { return levels_.at(static_cast<std::size_t>(l)); }
 
  private:
-  /// The observation's local grid for heading theta (grid frame) at `resolution`.
-  SparseLocalGrid local_grid(const Observation& observation, double theta, double resolution,
-                             const Eigen::Vector2d& centre) const;
+  /// The observation's local grid for heading theta (grid frame) at `resolution`; `points`
+  /// are the scan's points under a point model (nullptr otherwise).
+  SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,
+                             double resolution, const Eigen::Vector2d& centre) const;
 
   OccupancyMap map_;
   SonarRing ring_;

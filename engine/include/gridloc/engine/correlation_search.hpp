@@ -7,6 +7,7 @@
 
 #include "gridloc/grids/grid.hpp"
 #include "gridloc/sensors/local_grid.hpp"
+#include "gridloc/sensors/range_scan.hpp"
 
 namespace gridloc {
 
@@ -50,15 +51,18 @@ PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 /// The correlation of a placed local grid with two grids seen from one origin: arc cells
 /// read `arc`, the others `all`; positives and negatives are summed apart, each in the local
 /// grid's order, then added. score() and the branch-and-bound bounds both sum this way, which
-/// is what makes a bound >= the score bit for bit.
-inline double correlate(const float* arc, const float* all, const PlacedLocalGrid& local) {
+/// is what makes a bound >= the score bit for bit. `T` is float, or int8 for copies of
+/// grids whose values are all -1, 0 or 1 (the same values, so the same sums, from 4x less
+/// memory).
+template <typename T>
+double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
   double positive = 0.0, negative = 0.0;
   const std::size_t n = local.value.size();
   for (std::size_t k = 0; k < local.arc_count; ++k) {
-    positive += static_cast<double>(local.value[k] * arc[local.offset[k]]);
+    positive += static_cast<double>(local.value[k] * static_cast<float>(arc[local.offset[k]]));
   }
   for (std::size_t k = local.arc_count; k < n; ++k) {
-    negative += static_cast<double>(local.value[k] * all[local.offset[k]]);
+    negative += static_cast<double>(local.value[k] * static_cast<float>(all[local.offset[k]]));
   }
   return positive + negative;
 }
@@ -96,10 +100,16 @@ struct SearchLevel {
   std::function<SparseLocalGrid(double theta, const Eigen::Vector2d& centre)> make_local;
   int threads = 1;  ///< OpenMP threads scoring this level, one heading per task (thread-safe
                     ///< make_local required); results do not depend on it
+  /// Rigid points the local grids are made of, when they are: make_local(theta, 0) must then
+  /// equal rasterize_points(*points, theta, the grid's resolution). Lets branch and bound
+  /// bound whole heading intervals. nullptr: no such points (sonar, ray scans).
+  const ScanPoints* points = nullptr;
 };
 
 struct SearchResult {
   LatticePose best;
+  bool proven_optimal = true;       ///< false when a budget stopped a search early
+  double upper_bound = 0.0;         ///< no pose scores more (= best.score when proven optimal)
   std::vector<LatticePose> scored;  ///< every finest-level pose scored, in scoring order
   long long poses_scored = 0;
   long long cells_scored = 0;

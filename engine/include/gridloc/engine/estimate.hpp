@@ -26,6 +26,12 @@ struct SearchStats {
   long long cells_scored = 0;  ///< local cells multiplied, over all levels
   int levels = 1;
   double elapsed_ms = 0.0;  ///< wall time of the whole estimate, grid construction included
+  /// True when the lattice winner is proven the best pose of the window (an exact strategy
+  /// that ran to the end); false for multires (a heuristic) or a search stopped by its budget.
+  bool proven_optimal = true;
+  /// No lattice pose of the window scores more than this (= score when proven optimal); NaN
+  /// when unknown (multires).
+  double upper_bound = 0.0;
 };
 
 struct Estimate {
