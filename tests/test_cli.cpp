@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "gridloc/engine/evaluation.hpp"
@@ -122,7 +123,10 @@ TEST_F(Cli, SimulateThenLocalize) {
        {"score", "normalized_score", "confidence", "alternatives", "stats", "timing"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
-  EXPECT_EQ(j.at("stats").at("levels").get<int>(), 3);
+  // The default strategy is the fastest exact one, branch and bound: one level, proven.
+  EXPECT_EQ(j.at("stats").at("levels").get<int>(), 1);
+  EXPECT_TRUE(j.at("stats").at("proven_optimal").get<bool>());
+  EXPECT_EQ(j.at("stats").at("upper_bound").get<double>(), j.at("score").get<double>());
 }
 
 TEST_F(Cli, SimulateToStdout) {
@@ -176,6 +180,69 @@ TEST_F(Cli, BadStrategyAndSubcommand) {
   const CliRun r = run_cli(dir, "teleport");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
+}
+
+TEST_F(Cli, BadSearchOptionsAreNamed) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  const std::string base =
+      "localize --map " + quote(map) + " --readings " + quote(readings) + " --prior 3,2,0";
+  // room_rect is 7 x 5.5 m with its walls: a +-50 m window is larger than the map.
+  expect_cli_error(run_cli(dir, base + " --window-xy 50"), "larger than the map");
+  expect_cli_error(run_cli(dir, base + " --budget-ms -1"), "--budget-ms");
+  expect_cli_error(run_cli(dir, base + " --scan-model beams"), "--scan-model");
+  expect_cli_error(run_cli(dir, base + " --free-samples 0"), "--free-samples");
+}
+
+TEST_F(Cli, ScanModelsAndMultiresReportWhatTheyProve) {
+  // A 90-beam scan cast by hand in room_rect (6 x 4.5 m inside) from (3, 2) in the room's
+  // own frame, heading 0: the nearest of the walls and the two boxes against them (desk,
+  // cupboard) along each beam. maps/generate_maps.py puts the room's corner at world
+  // (0.15, 0.15) (map origin -0.5 plus 0.5 m margin and 0.15 m wall), so the truth is (3.15, 2.15).
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  const Box boxes[] = {{0.5, 3.8, 1.9, 4.5}, {5.5, 0.6, 6.0, 1.8}};
+  std::string csv = "# angle_rad,range_m\n";
+  for (int k = 0; k < 90; ++k) {
+    const double a = -std::numbers::pi + k * 2.0 * std::numbers::pi / 90;
+    const double c = std::cos(a), s = std::sin(a);
+    double r = 100.0;
+    if (c > 1e-9) r = std::min(r, 3.0 / c);
+    if (c < -1e-9) r = std::min(r, -3.0 / c);
+    if (s > 1e-9) r = std::min(r, 2.5 / s);
+    if (s < -1e-9) r = std::min(r, -2.0 / s);
+    for (const Box& b : boxes) {  // slab test of the ray from (3, 2)
+      double t0 = 0.0, t1 = 100.0;
+      for (const auto& [o, d, lo, hi] : {std::tuple{3.0, c, b.x0, b.x1}, {2.0, s, b.y0, b.y1}}) {
+        if (std::abs(d) < 1e-12) {
+          if (o < lo || o > hi) t0 = 1e9;
+          continue;
+        }
+        const double ta = (lo - o) / d, tb = (hi - o) / d;
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      }
+      if (t0 <= t1) r = std::min(r, t0);
+    }
+    csv += std::to_string(a) + "," + std::to_string(r) + "\n";
+  }
+  const std::string scan = dir.write("room.csv", csv);
+  for (const std::string model : {"samples", "rays", "hits"}) {
+    const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                      " --prior 3.35,2.0,0.1 --scan-model " + model);
+    ASSERT_EQ(r.status, 0) << model << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const double x = j.at("pose").at("x"), y = j.at("pose").at("y");
+    EXPECT_LE(std::hypot(x - 3.15, y - 2.15), 0.05) << model << ": " << r.out;
+    EXPECT_TRUE(j.at("stats").at("proven_optimal").get<bool>()) << model;
+  }
+  const CliRun m = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                    " --prior 3.35,2.0,0.1 --strategy multires");
+  ASSERT_EQ(m.status, 0) << m.err;
+  const auto j = nlohmann::json::parse(m.out);
+  EXPECT_FALSE(j.at("stats").at("proven_optimal").get<bool>());  // a heuristic proves nothing
+  EXPECT_TRUE(j.at("stats").at("upper_bound").is_null());
 }
 
 TEST_F(Cli, GlobalLocalizationWithoutPrior) {

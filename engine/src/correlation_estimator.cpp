@@ -79,6 +79,10 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   }
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
   validate(options_.scan);
+  if (!(options_.budget_ms >= 0.0) || !std::isfinite(options_.budget_ms)) {
+    throw Error("correlation options: budget_ms must be finite and >= 0, got " +
+                std::to_string(options_.budget_ms));
+  }
   if (options_.threads < 1 || options_.threads > 256) {
     throw Error("correlation options: threads must be in [1, 256], got " +
                 std::to_string(options_.threads));
@@ -144,6 +148,15 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   if (c.ix < 0 || c.iy < 0 || c.ix >= finest.width || c.iy >= finest.height) {
     std::ostringstream m;
     m << "prior (" << window.center.x << ", " << window.center.y << ") lies outside the map";
+    throw Error(m.str());
+  }
+  // The largest sensible window is global_window's: the whole map.
+  const double map_w = finest.width * res, map_h = finest.height * res;
+  if (window.half_xy > 0.5 * std::max(map_w, map_h) + res + 1e-9) {
+    std::ostringstream m;
+    m << "search window: +-" << window.half_xy << " m is larger than the map (" << map_w << " x "
+      << map_h << " m); search the whole map with global localization (global_window, "
+      << "gridloc localize --global)";
     throw Error(m.str());
   }
   // Clipped to the map below; the cap only keeps the integer arithmetic safe.

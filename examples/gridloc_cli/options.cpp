@@ -74,7 +74,9 @@ double check_arc_depth(double cells) {
 }
 
 void SearchArgs::add_to(CLI::App* cmd) {
-  cmd->add_option("--strategy", strategy, "multires | exhaustive | bnb (exact, fast)")
+  cmd->add_option("--strategy", strategy,
+                  "bnb (exact branch and bound, fastest exact) | exhaustive (exact) | multires "
+                  "(seed 001's coarse-to-fine, not exact)")
       ->capture_default_str();
   cmd->add_option("--arc-rule", arc_rule, "arc cell on free space: neutral | signed (seed 001)")
       ->capture_default_str();
@@ -88,6 +90,12 @@ void SearchArgs::add_to(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_option("--free-samples", free_samples, "free samples per beam (--scan-model samples)")
       ->capture_default_str();
+  cmd->add_option("--budget-ms", budget_ms,
+                  "bnb: stop after this many ms with the best pose so far (0 = no limit); "
+                  "stats.proven_optimal says whether it is the optimum")
+      ->capture_default_str();
+  cmd->add_flag("--heading-intervals", heading_intervals,
+                "bnb with a scan: bound intervals of headings too (exact; see README)");
 }
 
 void SearchArgs::apply(CorrelationOptions& o) const {
@@ -97,6 +105,11 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   o.threads = threads;
   o.scan.model = parse_scan_model(scan_model);
   o.scan.free_samples = free_samples;
+  if (!(budget_ms >= 0.0) || !std::isfinite(budget_ms)) {
+    throw Error("--budget-ms must be a finite number >= 0, got " + std::to_string(budget_ms));
+  }
+  o.budget_ms = budget_ms;
+  o.heading_intervals = heading_intervals;
   try {
     validate(o.scan);
   } catch (const Error&) {

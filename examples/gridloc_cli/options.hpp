@@ -21,14 +21,17 @@ double check_arc_depth(double cells);
 
 /// The search options `localize` and `eval` share: registered once, applied once.
 struct SearchArgs {
-  std::string strategy = "multires";
+  std::string strategy = "bnb";
   std::string arc_rule = "neutral";
   double arc_depth = SonarModelOptions{}.arc_depth_cells;
   int threads = 1;
   std::string scan_model = "samples";
   int free_samples = ScanModelOptions{}.free_samples;
+  double budget_ms = 0.0;
+  bool heading_intervals = false;
 
-  /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model and --free-samples.
+  /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
+  /// --budget-ms and --heading-intervals.
   void add_to(CLI::App* cmd);
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;

@@ -20,7 +20,7 @@ enum class SearchStrategy { Exhaustive, Multires, BranchAndBound };
 struct CorrelationOptions {
   LocalModel local = LocalModel::Oriented;    ///< oriented (seed 001 §3) or turned (baseline)
   GlobalModel global = GlobalModel::Thinned;  ///< thinned (seed 001 §5) or raw (baseline)
-  SearchStrategy strategy = SearchStrategy::Multires;
+  SearchStrategy strategy = SearchStrategy::BranchAndBound;  ///< the fastest exact one
   ArcRule arc_rule = ArcRule::Neutral;  ///< how arc cells score on free space (see ArcRule)
   SonarModelOptions sonar;              ///< sonar local grid model (arc depth)
   ScanModelOptions scan;                ///< scan local grid model (which cells a beam marks)
