@@ -255,7 +255,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
                                                std::chrono::steady_clock::now() - start)
                                                .count();
     }
-    if (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0) {
+    if (options_.second_peak && (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
       second = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
     }
     if (bnb.incumbent || second.poses_scored > 0) peaks.push_back(second.best);

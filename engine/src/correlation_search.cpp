@@ -117,6 +117,7 @@ SearchResult search_exhaustive(const Lattice& lattice, const SearchLevel& finest
   for (const auto& c : candidates) {
     if (better(c, result.best)) result.best = c;
   }
+  result.upper_bound = result.best.score;  // every pose scored: proven
   result.scored = std::move(candidates);
   return result;
 }

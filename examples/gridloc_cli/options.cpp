@@ -96,6 +96,9 @@ void SearchArgs::add_to(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_flag("--heading-intervals", heading_intervals,
                 "bnb with a scan: bound intervals of headings too (exact; see README)");
+  cmd->add_flag("--no-second-peak", no_second_peak,
+                "bnb: skip the exact search for the best distinct pose (faster; the "
+                "confidence is then optimistic)");
 }
 
 void SearchArgs::apply(CorrelationOptions& o) const {
@@ -110,6 +113,7 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   }
   o.budget_ms = budget_ms;
   o.heading_intervals = heading_intervals;
+  o.second_peak = !no_second_peak;
   try {
     validate(o.scan);
   } catch (const Error&) {

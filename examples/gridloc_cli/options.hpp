@@ -29,9 +29,10 @@ struct SearchArgs {
   int free_samples = ScanModelOptions{}.free_samples;
   double budget_ms = 0.0;
   bool heading_intervals = false;
+  bool no_second_peak = false;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
-  /// --budget-ms and --heading-intervals.
+  /// --budget-ms, --heading-intervals and --no-second-peak.
   void add_to(CLI::App* cmd);
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;

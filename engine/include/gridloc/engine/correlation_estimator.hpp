@@ -38,6 +38,11 @@ struct CorrelationOptions {
   /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
   /// reach; set it to a laser's max range to localize scans.
   double reach_m = 0.0;
+  /// Branch and bound: find the best pose distinct from the winner exactly, by a second
+  /// search (it can cost more than the first: distinct poses score lower, so less is pruned).
+  /// Off: the second score is the best distinct pose the first search happened to score, a
+  /// lower bound, so `confidence` is then optimistic (0 when it scored none).
+  bool second_peak = true;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
 };
