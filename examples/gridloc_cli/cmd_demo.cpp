@@ -63,11 +63,12 @@ void run(const DemoArgs& a) {
               success ? "success" : "FAILURE");
   std::printf("score     %.3f (normalized %.3f), confidence %.2f\n", e.score, e.normalized_score,
               e.confidence);
-  std::printf(
-      "time      %.2f ms (multiresolution, %d levels, %lld poses scored; window +-%.2f m, "
-      "+-%.0f deg)\n",
-      e.stats.elapsed_ms, e.stats.levels, e.stats.poses_scored, window.half_xy,
-      rad2deg(window.half_theta));
+  const bool multires = estimator.options().strategy == SearchStrategy::Multires;
+  std::printf("time      %.2f ms (%s, %lld poses scored%s; window +-%.2f m, +-%.0f deg)\n",
+              e.stats.elapsed_ms, to_string(estimator.options().strategy).c_str(),
+              e.stats.poses_scored,
+              multires ? "" : (e.stats.proven_optimal ? ", proven optimal" : ", not proven"),
+              window.half_xy, rad2deg(window.half_theta));
 }
 
 }  // namespace

@@ -49,6 +49,18 @@ SearchStrategy parse_strategy(const std::string& s) {
   throw Error("--strategy must be multires, exhaustive or bnb, not '" + s + "'");
 }
 
+std::string to_string(SearchStrategy s) {
+  switch (s) {
+    case SearchStrategy::BranchAndBound:
+      return "branch and bound";
+    case SearchStrategy::Exhaustive:
+      return "exhaustive";
+    case SearchStrategy::Multires:
+      return "multiresolution";
+  }
+  return "?";
+}
+
 ArcRule parse_arc_rule(const std::string& s) {
   if (s == "neutral") return ArcRule::Neutral;
   if (s == "signed") return ArcRule::Signed;
