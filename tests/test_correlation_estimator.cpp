@@ -266,6 +266,11 @@ TEST_F(EstimatorErrors, BadWindow) {
   w = window;
   w.half_theta = 4.0;
   test::expect_error([&] { est->estimate(obs, w); }, {"half_theta"});
+  w = window;
+  w.half_xy = 50.0;  // the map is 7 x 5.5 m
+  test::expect_error([&] { est->estimate(obs, w); }, {"larger than the map", "global"});
+  // The whole-map window of global localization is the largest one accepted.
+  EXPECT_NO_THROW(est->estimate(obs, est->global_window(obs)));
 }
 
 TEST_F(Estimator, BadOptions) {
@@ -295,7 +300,8 @@ namespace {
 TEST(CorrelationEstimatorThreads, TwoThreadsGiveTheSameEstimateAsOne) {
   const OccupancyMap map = load_ros_map(test::map_path("room_l"));
   const SonarRing ring = load_sonar_ring(test::ring_path());
-  for (SearchStrategy strategy : {SearchStrategy::Multires, SearchStrategy::Exhaustive}) {
+  for (SearchStrategy strategy :
+       {SearchStrategy::Multires, SearchStrategy::Exhaustive, SearchStrategy::BranchAndBound}) {
     CorrelationOptions one, two;
     one.strategy = two.strategy = strategy;
     two.threads = 2;
@@ -313,6 +319,7 @@ TEST(CorrelationEstimatorThreads, TwoThreadsGiveTheSameEstimateAsOne) {
       EXPECT_EQ(ea.pose.y, eb.pose.y);
       EXPECT_EQ(ea.pose.theta, eb.pose.theta);
       EXPECT_EQ(ea.second_score, eb.second_score);
+      if (strategy == SearchStrategy::BranchAndBound) continue;  // its work depends on timing
       EXPECT_EQ(ea.stats.poses_scored, eb.stats.poses_scored);
       EXPECT_EQ(ea.stats.cells_scored, eb.stats.cells_scored);
     }
@@ -359,6 +366,42 @@ TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
 
 namespace gridloc {
 namespace {
+
+// A budget makes branch and bound anytime: whatever it returns is a scored lattice pose
+// no better than the optimum, with an upper bound no lower than it; proven means optimal.
+TEST(CorrelationEstimatorBnb, BudgetReturnsTheBestSoFarAndWhatItProved) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_furnished"));
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  CorrelationOptions exact, hurried, single;
+  exact.strategy = hurried.strategy = single.strategy = SearchStrategy::BranchAndBound;
+  hurried.budget_ms = 1e-6;
+  single.second_peak = false;
+  const CorrelationEstimator a(map, ring, exact), b(map, ring, hurried), c(map, ring, single);
+  Rng rng(5);
+  for (int t = 0; t < 6; ++t) {
+    const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
+    const Observation obs{simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()))};
+    SearchWindow w;
+    w.center = {truth.x + 0.3, truth.y + 0.3, truth.theta + 0.3};
+    const Estimate ea = a.estimate(obs, w), eb = b.estimate(obs, w), ec = c.estimate(obs, w);
+    EXPECT_TRUE(ea.stats.proven_optimal);
+    EXPECT_EQ(ea.stats.upper_bound, ea.score);
+    EXPECT_LE(eb.score, ea.score) << t;
+    EXPECT_GE(eb.stats.upper_bound, ea.score) << t;
+    if (eb.stats.proven_optimal) {
+      EXPECT_EQ(eb.lattice_pose.x, ea.lattice_pose.x) << t;
+    }
+    // Without the second search: the same winner; the second score, when the first search
+    // scored a distinct pose at all, is a lower bound of the exact one.
+    EXPECT_EQ(ec.lattice_pose.x, ea.lattice_pose.x) << t;
+    EXPECT_EQ(ec.lattice_pose.theta, ea.lattice_pose.theta) << t;
+    EXPECT_EQ(ec.score, ea.score) << t;
+    if (ec.alternatives.size() > 1) {
+      EXPECT_LE(ec.second_score, ea.second_score) << t;
+    }
+    EXPECT_LT(ec.stats.cells_scored, ea.stats.cells_scored) << t;
+  }
+}
 
 TEST(CorrelationEstimatorErrors, TooManyHeadingsIsAnErrorNotAnAllocation) {
   const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
