@@ -65,11 +65,13 @@ class Canvas {
     g.dx.reserve(touched_.size());
     g.dy.reserve(touched_.size());
     g.value.reserve(touched_.size());
+    // Cells come in increasing index order: the row only ever advances (no division).
+    int row = 0, row_start = 0;
     auto emit = [&](int idx) {
-      const int row = idx / side_;
+      while (idx >= row_start + side_) ++row, row_start += side_;
       const float v = arc_[idx] > 0.0f ? arc_[idx] : free_[idx];
       if (v != 0.0f) {
-        g.dx.push_back(idx - row * side_ - half_);
+        g.dx.push_back(idx - row_start - half_);
         g.dy.push_back(row - half_);
         g.value.push_back(v);
       }
@@ -79,15 +81,17 @@ class Canvas {
     if (touched_.size() * 64 < static_cast<std::size_t>(side_) * side_) {
       // Sparse (scan points): sorting the written cells beats walking their bounding box.
       radix_sort(touched_);
+      if (!touched_.empty()) row = touched_.front() / side_, row_start = row * side_;
       for (int idx : touched_) emit(idx);
     } else {
       for (int idx : touched_) {
-        const int row = idx / side_, col = idx - row * side_;
+        const int r = idx / side_, col = idx - r * side_;
         x_min_ = std::min(x_min_, col), x_max_ = std::max(x_max_, col);
-        y_min_ = std::min(y_min_, row), y_max_ = std::max(y_max_, row);
+        y_min_ = std::min(y_min_, r), y_max_ = std::max(y_max_, r);
       }
-      for (int row = y_min_; row <= y_max_; ++row) {
-        const int begin = row * side_;
+      row = y_min_, row_start = y_min_ * side_;
+      for (int r = y_min_; r <= y_max_; ++r) {
+        const int begin = r * side_;
         for (int idx = begin + x_min_; idx <= begin + x_max_; ++idx) {
           if (written_[idx]) emit(idx);
         }
@@ -131,16 +135,16 @@ class Canvas {
     return idx;
   }
 
-  /// Sorts non-negative ints by 11-bit digits, least significant first (a few passes over
-  /// a few hundred cells, where std::sort's comparisons cost more).
+  /// Sorts non-negative ints by 8-bit digits, least significant first (a few passes over a
+  /// few hundred cells, where std::sort's comparisons cost more).
   void radix_sort(std::vector<int>& v) {
     scratch_.resize(v.size());
     const unsigned top = static_cast<unsigned>(side_) * static_cast<unsigned>(side_);
-    for (unsigned shift = 0; shift < 32 && (top >> shift) > 0; shift += 11) {
-      std::size_t count[2049] = {};
-      for (int x : v) ++count[((static_cast<unsigned>(x) >> shift) & 2047u) + 1];
-      for (std::size_t b = 1; b < 2049; ++b) count[b] += count[b - 1];
-      for (int x : v) scratch_[count[(static_cast<unsigned>(x) >> shift) & 2047u]++] = x;
+    for (unsigned shift = 0; shift < 32 && (top >> shift) > 0; shift += 8) {
+      std::size_t count[257] = {};
+      for (int x : v) ++count[((static_cast<unsigned>(x) >> shift) & 255u) + 1];
+      for (std::size_t b = 1; b < 257; ++b) count[b] += count[b - 1];
+      for (int x : v) scratch_[count[(static_cast<unsigned>(x) >> shift) & 255u]++] = x;
       v.swap(scratch_);
     }
   }
