@@ -1,6 +1,7 @@
 // Tests of engine/src/branch_and_bound.cpp: block bounds against exact scores, and the
 // branch-and-bound search against search_exhaustive, exactly (pose and score bit for bit),
-// on random grids, local grids and lattices with fixed seeds, and on grids made of ties.
+// on random grids, local grids and lattices with fixed seeds, and on grids made of ties; with
+// rigid scan points too (heading-interval bounds, threads, exclusion, incumbent, budget).
 #include "gridloc/engine/branch_and_bound.hpp"
 
 #include <gtest/gtest.h>
@@ -8,14 +9,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/range_scan.hpp"
+#include "test_support.hpp"
 
 namespace gridloc {
 namespace {
@@ -483,6 +488,525 @@ TEST(SearchBranchAndBound, RejectsBadInput) {
   wide.value.push_back(1.0f);
   const std::vector<SparseLocalGrid> wide_locals = {wide};
   expect_error(lat, level_of(padded, wide_locals), pyramid, "exceeds the padding 2");
+}
+
+// --- Rigid scan points: heading-interval bounds, exclusion, incumbent, budget, threads ------
+
+double uniform_real(std::mt19937& rng, double lo, double hi) {
+  return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
+}
+
+/// Rooms like a thinned map: +1 one-cell contours around -1 interiors, unknown elsewhere.
+EvidenceGrid make_rooms(std::mt19937& rng, int w, int h) {
+  GridGeometry geo;
+  geo.width = w;
+  geo.height = h;
+  EvidenceGrid g(geo, 0.0f);
+  const int rooms = 1 + w * h / 150;
+  for (int r = 0; r < rooms; ++r) {
+    const int x0 = uniform_int(rng, 0, w - 1), y0 = uniform_int(rng, 0, h - 1);
+    const int x1 = std::min(w - 1, x0 + uniform_int(rng, 2, 18));
+    const int y1 = std::min(h - 1, y0 + uniform_int(rng, 2, 18));
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        if (x == x0 || x == x1 || y == y0 || y == y1) {
+          g.at(x, y) = 1.0f;
+        } else if (g.at(x, y) == 0.0f) {
+          g.at(x, y) = -1.0f;
+        }
+      }
+    }
+  }
+  return g;
+}
+
+/// A random scan: even or random angles, ranges in [0, max_range) with some beams without
+/// a return; at least one return (validate() requires it).
+RangeScan random_scan(std::mt19937& rng, int beams, double max_range) {
+  RangeScan scan;
+  scan.max_range = max_range;
+  const bool even = uniform_int(rng, 0, 1) == 0;
+  const double a0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
+  for (int k = 0; k < beams; ++k) {
+    scan.angles.push_back(even ? a0 + 2.0 * std::numbers::pi * k / beams
+                               : uniform_real(rng, -std::numbers::pi, std::numbers::pi));
+    const int kind = uniform_int(rng, 0, 9);
+    scan.ranges.push_back(kind == 0 ? max_range + uniform_real(rng, 0.0, 1.0)
+                                    : uniform_real(rng, 0.0, max_range));
+  }
+  if (std::none_of(scan.ranges.begin(), scan.ranges.end(),
+                   [&](double r) { return r < max_range; })) {
+    scan.ranges[0] = 0.5 * max_range;
+  }
+  return scan;
+}
+
+/// The scan a robot at cell (tx, ty) + a sub-cell offset with heading theta sees on g (cells
+/// of `res` m): each beam ends in the first cell > 0 it meets (a little noise), or has no
+/// return when it meets none within the max range or leaves the map.
+RangeScan scan_from(std::mt19937& rng, const EvidenceGrid& g, double res, int tx, int ty,
+                    double theta, int beams, double max_range) {
+  RangeScan scan;
+  scan.max_range = max_range;
+  const double x0 = tx + uniform_real(rng, -0.5, 0.5), y0 = ty + uniform_real(rng, -0.5, 0.5);
+  const double a0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
+  for (int k = 0; k < beams; ++k) {
+    const double a = a0 + 2.0 * std::numbers::pi * k / beams;
+    double range = max_range;
+    for (double d = 0.0; d * res < max_range; d += 0.25) {
+      const int x = static_cast<int>(std::floor(x0 + d * std::cos(theta + a) + 0.5));
+      const int y = static_cast<int>(std::floor(y0 + d * std::sin(theta + a) + 0.5));
+      if (!g.geometry.contains(x, y)) break;
+      if (g.at(x, y) > 0.0f) {
+        range = std::max(0.0, d * res + uniform_real(rng, -0.3, 0.3) * res);
+        break;
+      }
+    }
+    scan.angles.push_back(a);
+    scan.ranges.push_back(range);
+  }
+  if (std::none_of(scan.ranges.begin(), scan.ranges.end(),
+                   [&](double r) { return r < max_range; })) {
+    scan.ranges[0] = 0.5 * max_range;
+  }
+  return scan;
+}
+
+/// A level whose local grids are the rigid points rasterized, as the estimator makes it.
+SearchLevel points_level(const PaddedGrid& padded, const ScanPoints& points) {
+  const double res = padded.grid.geometry.resolution;
+  SearchLevel level{&padded, [&points, res](double theta, const Eigen::Vector2d& centre) {
+                      return rasterize_points(points, theta, res, centre);
+                    }};
+  level.points = &points;
+  return level;
+}
+
+/// One random search problem over rigid scan points.
+struct ScanCase {
+  EvidenceGrid grid;
+  RangeScan scan;
+  ScanPoints points;
+  Lattice lat;
+  int depth = 0;
+  int pad = 0;
+  ArcRule rule = ArcRule::Neutral;
+  std::string what;
+};
+
+ScanCase make_scan_case(std::mt19937& rng, int c) {
+  ScanCase s;
+  const double res = c % 2 == 0 ? 0.05 : 0.1;
+  const int w = uniform_int(rng, 1, c % 8 == 0 ? 48 : 28);
+  const int h = uniform_int(rng, 1, c % 8 == 0 ? 48 : 28);
+  const int kind = c % 8;
+  switch (kind) {
+    case 0:
+    case 1:
+      s.grid = make_grid(rng, w, h, GridKind::Sparse);
+      break;
+    case 2:
+    case 3:
+      s.grid = make_rooms(rng, w, h);
+      break;
+    case 4:
+      s.grid = make_grid(rng, w, h, c % 3 == 0 ? GridKind::Zero : GridKind::Ternary);
+      break;
+    case 5:
+      s.grid = make_grid(rng, w, h, GridKind::Periodic);
+      break;
+    case 6:  // not ternary: the float bound levels
+      s.grid = make_grid(rng, w, h, c % 2 == 0 ? GridKind::Floats : GridKind::Constant);
+      break;
+    default: {  // needles: a few occupied cells in unknown space. With few points, a bound
+                // is tight: one that misses where a point can land prunes the winner.
+      GridGeometry geo;
+      geo.width = w;
+      geo.height = h;
+      s.grid = EvidenceGrid(geo, 0.0f);
+      for (int k = uniform_int(rng, 1, 3); k > 0; --k) {
+        s.grid.at(uniform_int(rng, 0, w - 1), uniform_int(rng, 0, h - 1)) = 1.0f;
+      }
+      break;
+    }
+  }
+  s.grid.geometry.resolution = res;
+  const int beams = uniform_int(rng, 1, kind == 7 ? 3 : 40);
+  const double max_range = uniform_real(rng, 0.15, c % 5 == 0 || kind == 7 ? 2.5 : 1.2);
+  if (kind == 3) {  // seen from a pose of the map: one clear peak, deep pruning
+    s.scan = scan_from(rng, s.grid, res, uniform_int(rng, 0, w - 1), uniform_int(rng, 0, h - 1),
+                       uniform_real(rng, -3.0, 3.0), beams, max_range);
+  } else {
+    s.scan = random_scan(rng, beams, max_range);
+  }
+  const ScanModelOptions model = c % 3 == 2
+                                     ? ScanModelOptions{ScanModel::Hits, 1}
+                                     : ScanModelOptions{ScanModel::Samples, uniform_int(rng, 1, 5)};
+  s.points = scan_points(s.scan, model);
+  const int headings = c % 10 == 0 ? 1 : uniform_int(rng, 2, 40);
+  s.lat = make_lattice(rng, w, h, headings);
+  s.lat.theta0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
+  s.lat.step_theta = std::exp(uniform_real(rng, std::log(0.01), std::log(0.5)));
+  if (c % 9 == 4) s.lat.step_theta = -s.lat.step_theta;
+  s.depth = uniform_int(rng, 0, 8);
+  s.pad = static_cast<int>(std::ceil(s.points.max_norm / res)) + uniform_int(rng, 3, 5);
+  s.rule = (c / 2) % 2 == 0 ? ArcRule::Neutral : ArcRule::Signed;
+  std::ostringstream what;
+  what << "case " << c << ": map " << w << " x " << h << " res " << res << " kind " << kind << ", "
+       << beams << " beams (" << s.points.hit_count << " ends, " << s.points.size()
+       << " points, max_norm " << s.points.max_norm << "), lattice x [" << s.lat.x0 << ", "
+       << s.lat.x1 << "] y [" << s.lat.y0 << ", " << s.lat.y1 << "] " << headings
+       << " headings step " << s.lat.step_theta << ", depth " << s.depth << ", pad " << s.pad
+       << ", rule " << static_cast<int>(s.rule);
+  s.what = what.str();
+  return s;
+}
+
+/// Index of a lattice pose in search_exhaustive's `scored` (heading, row, column order).
+std::size_t lattice_index(const Lattice& lat, int ix, int iy, int it) {
+  const auto nx = static_cast<std::size_t>(lat.x1 - lat.x0 + 1);
+  const auto ny = static_cast<std::size_t>(lat.y1 - lat.y0 + 1);
+  return (static_cast<std::size_t>(it) * ny + static_cast<std::size_t>(iy - lat.y0)) * nx +
+         static_cast<std::size_t>(ix - lat.x0);
+}
+
+bool in_lattice(const Lattice& lat, const LatticePose& p) {
+  return p.ix >= lat.x0 && p.ix <= lat.x1 && p.iy >= lat.y0 && p.iy <= lat.y1 && p.it >= 0 &&
+         p.it < lat.headings;
+}
+
+void expect_pose(const LatticePose& got, const LatticePose& want, const std::string& what) {
+  EXPECT_EQ(got.ix, want.ix) << what;
+  EXPECT_EQ(got.iy, want.iy) << what;
+  EXPECT_EQ(got.it, want.it) << what;
+  EXPECT_EQ(got.score, want.score) << what;
+}
+
+/// The leaves a search scored are lattice poses with their exhaustive scores, each once.
+void expect_leaves_exact(const SearchResult& r, const SearchResult& exhaustive, const Lattice& lat,
+                         const std::string& what) {
+  EXPECT_EQ(r.poses_scored, static_cast<long long>(r.scored.size())) << what;
+  std::vector<char> seen(exhaustive.scored.size(), 0);
+  for (const auto& p : r.scored) {
+    ASSERT_TRUE(in_lattice(lat, p)) << what;
+    const std::size_t k = lattice_index(lat, p.ix, p.iy, p.it);
+    ASSERT_LT(k, exhaustive.scored.size()) << what;
+    EXPECT_EQ(p.score, exhaustive.scored[k].score) << what;
+    EXPECT_FALSE(seen[k]) << what << ": pose scored twice";
+    seen[k] = 1;
+  }
+}
+
+/// Checks an unbudgeted search result against the exhaustive best.
+void expect_exact(const SearchResult& r, const SearchResult& e, const Lattice& lat,
+                  const std::string& what) {
+  expect_pose(r.best, e.best, what);
+  EXPECT_TRUE(r.proven_optimal) << what;
+  EXPECT_EQ(r.upper_bound, r.best.score) << what;
+  expect_leaves_exact(r, e, lat, what);
+}
+
+/// The exhaustive best outside `ex`, from exhaustive's scored poses (in index order).
+std::optional<LatticePose> best_outside(const SearchResult& e, const Exclusion& ex) {
+  std::optional<LatticePose> best;
+  for (const auto& p : e.scored) {
+    if (ex.contains(p.ix, p.iy, p.it)) continue;
+    if (!best || p.score > best->score) best = p;
+  }
+  return best;
+}
+
+TEST(SearchBranchAndBound, HeadingIntervalsEqualExhaustiveOnRandomScans) {
+  std::mt19937 rng(5150);
+  int compared = 0, deep = 0, intervals_ran = 0;
+  for (int c = 0; c < 320; ++c) {
+    const ScanCase s = make_scan_case(rng, c);
+    const PaddedGrid padded = pad_grid(s.grid, s.pad, s.rule);
+    const BoundPyramid pyramid = make_bound_pyramid(padded, s.depth);
+    const SearchLevel level = points_level(padded, s.points);
+    const SearchResult e = search_exhaustive(s.lat, level);
+    const HeadingGrids grids(s.lat, level);  // shared by the searches below
+
+    BranchAndBoundOptions intervals;
+    intervals.heading_intervals = true;
+    const SearchResult a = search_branch_and_bound(s.lat, grids, pyramid, intervals);
+    expect_exact(a, e, s.lat, s.what + " [intervals]");
+    deep += a.poses_scored * 4 < e.poses_scored ? 1 : 0;
+
+    const SearchResult b = search_branch_and_bound(s.lat, grids, pyramid, {});
+    expect_exact(b, e, s.lat, s.what + " [no intervals]");
+    // Interval bounds count points, not local cells: the counters differ when they ran.
+    intervals_ran += a.cells_scored != b.cells_scored ? 1 : 0;
+
+    // Two threads on one shared queue, with heading grids built lazily by both.
+    const HeadingGrids fresh(s.lat, level);
+    BranchAndBoundOptions two = intervals;
+    two.heading_intervals = c % 2 == 0;
+    two.threads = 2;
+    expect_exact(search_branch_and_bound(s.lat, fresh, pyramid, two), e, s.lat,
+                 s.what + " [2 threads]");
+    ++compared;
+  }
+  EXPECT_EQ(compared, 320);
+  EXPECT_GT(deep, 20);  // the bounds prune in a fair share of the cases
+}
+
+/// The best pose of `window` (a sub-rectangle of the translations of `all`, same headings),
+/// from an exhaustive search over `all`: a pose's score does not depend on the lattice.
+LatticePose best_in_window(const SearchResult& all, const Lattice& window) {
+  std::optional<LatticePose> best;
+  for (const auto& p : all.scored) {  // index order: the first of equal scores wins
+    if (!in_lattice(window, p)) continue;
+    if (!best || p.score > best->score) best = p;
+  }
+  return *best;
+}
+
+/// One or two beam ends over a map of a few occupied cells: every bound is then the number of
+/// occupied cells its pooled window catches, so a window that misses a cell where a point can
+/// land (a widening or a pooled level too small) prunes the winner. Each case searches many
+/// sub-windows of the map (blocks aligned differently, other winners) on shared heading grids.
+TEST(SearchBranchAndBound, HeadingIntervalsFindIsolatedOccupiedCells) {
+  std::mt19937 rng(1701);
+  int found = 0, searches = 0;
+  for (int c = 0; c < 240; ++c) {
+    const double res = c % 3 == 0 ? 0.1 : 0.05;
+    const int w = uniform_int(rng, 8, 32), h = uniform_int(rng, 8, 32);
+    GridGeometry geo;
+    geo.width = w;
+    geo.height = h;
+    geo.resolution = res;
+    EvidenceGrid g(geo, 0.0f);
+    for (int k = uniform_int(rng, 1, 2); k > 0; --k) {
+      g.at(uniform_int(rng, 0, w - 1), uniform_int(rng, 0, h - 1)) = 1.0f;
+    }
+    RangeScan scan;
+    scan.max_range = 3.0;
+    for (int k = uniform_int(rng, 1, 2); k > 0; --k) {
+      scan.angles.push_back(uniform_real(rng, -std::numbers::pi, std::numbers::pi));
+      scan.ranges.push_back(uniform_real(rng, 0.3, 2.5));
+    }
+    const ScanPoints points = scan_points(scan, c % 4 == 0 ? ScanModelOptions{ScanModel::Samples, 2}
+                                                           : ScanModelOptions{ScanModel::Hits, 1});
+    Lattice all;
+    all.x0 = 0, all.x1 = w - 1, all.y0 = 0, all.y1 = h - 1;
+    all.headings = uniform_int(rng, 8, 48);
+    all.theta0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
+    all.step_theta = std::exp(uniform_real(rng, std::log(0.005), std::log(0.15)));
+    const PaddedGrid padded =
+        pad_grid(g, static_cast<int>(std::ceil(points.max_norm / res)) + 3, ArcRule::Neutral);
+    const BoundPyramid pyramid = make_bound_pyramid(padded, uniform_int(rng, 2, 8));
+    const SearchLevel level = points_level(padded, points);
+    const SearchResult e = search_exhaustive(all, level);
+    const HeadingGrids grids(all, level);
+    found += e.best.score > 0.0 ? 1 : 0;
+    for (int k = 0; k < 2; ++k) {
+      Lattice window = all;
+      if (k > 0) {
+        const Lattice r = make_lattice(rng, w, h, all.headings);
+        window.x0 = r.x0, window.x1 = r.x1, window.y0 = r.y0, window.y1 = r.y1;
+      }
+      BranchAndBoundOptions o;
+      o.heading_intervals = true;
+      o.threads = c % 4 == 1 ? 2 : 1;
+      const SearchResult b = search_branch_and_bound(window, grids, pyramid, o);
+      const std::string what = "needles case " + std::to_string(c) + " window " +
+                               std::to_string(k) + " map " + std::to_string(w) + " x " +
+                               std::to_string(h) + " step " + std::to_string(all.step_theta);
+      expect_pose(b.best, best_in_window(e, window), what);
+      EXPECT_TRUE(b.proven_optimal) << what;
+      for (const auto& p : b.scored) EXPECT_TRUE(in_lattice(window, p)) << what;
+      expect_leaves_exact(b, e, all, what);
+      ++searches;
+    }
+  }
+  EXPECT_EQ(searches, 240 * 2);
+  EXPECT_GT(found, 30);  // many cases have a pose that lands a point on an occupied cell
+}
+
+TEST(SearchBranchAndBound, ExclusionAndIncumbentWithHeadingIntervals) {
+  std::mt19937 rng(6502);
+  int excluded_all = 0;
+  for (int c = 0; c < 240; ++c) {
+    const ScanCase s = make_scan_case(rng, c);
+    const PaddedGrid padded = pad_grid(s.grid, s.pad, s.rule);
+    const BoundPyramid pyramid = make_bound_pyramid(padded, s.depth);
+    const SearchLevel level = points_level(padded, s.points);
+    const SearchResult e = search_exhaustive(s.lat, level);
+    const HeadingGrids grids(s.lat, level);
+    auto random_pose = [&] {
+      return e.scored[static_cast<std::size_t>(
+          uniform_int(rng, 0, static_cast<int>(e.scored.size()) - 1))];
+    };
+
+    // Exclusion around the winner or any pose: the best pose outside it.
+    const LatticePose center = c % 2 == 0 ? e.best : random_pose();
+    const Exclusion ex{center, uniform_int(rng, 0, 6) + (c % 3 == 0 ? 0.0 : 0.5),
+                       uniform_int(rng, 0, 3)};
+    const std::optional<LatticePose> outside = best_outside(e, ex);
+    for (int threads : {1, 2}) {
+      BranchAndBoundOptions o;
+      o.exclude = ex;
+      o.heading_intervals = (c + threads) % 2 == 0 || threads == 1;
+      o.threads = threads;
+      const std::string what = s.what + " [exclusion, " + std::to_string(threads) + " threads]";
+      const SearchResult r = search_branch_and_bound(s.lat, grids, pyramid, o);
+      for (const auto& p : r.scored) EXPECT_FALSE(ex.contains(p.ix, p.iy, p.it)) << what;
+      expect_leaves_exact(r, e, s.lat, what);
+      if (!outside) {
+        EXPECT_EQ(r.poses_scored, 0) << what;
+        excluded_all += threads == 1;
+        continue;
+      }
+      expect_pose(r.best, *outside, what);
+      EXPECT_TRUE(r.proven_optimal) << what;
+    }
+
+    // An incumbent that is a real scored pose: the exhaustive best beats or ties it at a
+    // lower index, so the result is still the exhaustive best.
+    {
+      BranchAndBoundOptions o;
+      o.heading_intervals = c % 4 != 1;
+      o.incumbent = c % 5 == 0 ? e.best : random_pose();
+      const std::string what = s.what + " [incumbent]";
+      const SearchResult r = search_branch_and_bound(s.lat, grids, pyramid, o);
+      expect_pose(r.best, e.best, what);
+      EXPECT_TRUE(r.proven_optimal) << what;
+      expect_leaves_exact(r, e, s.lat, what);
+    }
+    // Both, as the estimator's second-peak search uses them: incumbent outside the exclusion.
+    if (outside) {
+      std::vector<LatticePose> candidates;
+      for (const auto& p : e.scored) {
+        if (!ex.contains(p.ix, p.iy, p.it)) candidates.push_back(p);
+      }
+      BranchAndBoundOptions o;
+      o.exclude = ex;
+      o.heading_intervals = true;
+      o.incumbent = candidates[static_cast<std::size_t>(
+          uniform_int(rng, 0, static_cast<int>(candidates.size()) - 1))];
+      const std::string what = s.what + " [exclusion + incumbent]";
+      const SearchResult r = search_branch_and_bound(s.lat, grids, pyramid, o);
+      expect_pose(r.best, *outside, what);
+      for (const auto& p : r.scored) EXPECT_FALSE(ex.contains(p.ix, p.iy, p.it)) << what;
+    }
+    // An incumbent nothing beats (scoring above every pose) is the result.
+    {
+      BranchAndBoundOptions o;
+      o.heading_intervals = c % 2 == 0;
+      LatticePose top = random_pose();
+      top.score = e.best.score + 1.0;
+      o.incumbent = top;
+      const std::string what = s.what + " [unbeaten incumbent]";
+      const SearchResult r = search_branch_and_bound(s.lat, grids, pyramid, o);
+      expect_pose(r.best, top, what);
+      EXPECT_TRUE(r.proven_optimal) << what;
+      EXPECT_EQ(r.upper_bound, top.score) << what;
+      expect_leaves_exact(r, e, s.lat, what);
+    }
+  }
+  EXPECT_GT(excluded_all, 0);  // some exclusions hold the whole lattice
+}
+
+TEST(SearchBranchAndBound, AnytimeBudgetReturnsAScoredPoseAndAValidUpperBound) {
+  std::mt19937 rng(31337);
+  int stopped = 0;
+  for (int c = 0; c < 4; ++c) {
+    const double res = 0.05;
+    const int w = 64, h = 56;
+    const EvidenceGrid grid = [&] {
+      EvidenceGrid g = c % 2 == 0 ? make_rooms(rng, w, h) : make_grid(rng, w, h, GridKind::Sparse);
+      g.geometry.resolution = res;
+      return g;
+    }();
+    const RangeScan scan =
+        c % 2 == 0 ? scan_from(rng, grid, res, 30, 25, 0.4, 40, 2.5) : random_scan(rng, 40, 2.5);
+    const ScanPoints points = scan_points(scan, c < 2 ? ScanModelOptions{ScanModel::Samples, 3}
+                                                      : ScanModelOptions{ScanModel::Hits, 1});
+    Lattice lat;
+    lat.x0 = 0, lat.x1 = w - 1, lat.y0 = 0, lat.y1 = h - 1;
+    lat.headings = 36;
+    lat.theta0 = -0.9;
+    lat.step_theta = 0.05;
+    const PaddedGrid padded =
+        pad_grid(grid, static_cast<int>(std::ceil(points.max_norm / res)) + 3);
+    const BoundPyramid pyramid = make_bound_pyramid(padded, bound_depth_for(lat));
+    const SearchLevel level = points_level(padded, points);
+    const SearchResult e = search_exhaustive(lat, level);
+    const HeadingGrids grids(lat, level);
+    for (double budget : {1e-9, 1e-3, 0.05, 0.5}) {
+      for (int threads : {1, 2}) {
+        for (bool intervals : {false, true}) {
+          BranchAndBoundOptions o;
+          o.budget_ms = budget;
+          o.threads = threads;
+          o.heading_intervals = intervals;
+          const std::string what = "case " + std::to_string(c) + " budget " +
+                                   std::to_string(budget) + " threads " + std::to_string(threads) +
+                                   " intervals " + std::to_string(intervals);
+          const SearchResult r = search_branch_and_bound(lat, grids, pyramid, o);
+          ASSERT_GE(r.poses_scored, 1) << what;
+          ASSERT_TRUE(in_lattice(lat, r.best)) << what;
+          EXPECT_EQ(r.best.score,
+                    e.scored[lattice_index(lat, r.best.ix, r.best.iy, r.best.it)].score)
+              << what;
+          EXPECT_GE(r.upper_bound, e.best.score) << what;
+          EXPECT_GE(e.best.score, r.best.score) << what;
+          expect_leaves_exact(r, e, lat, what);
+          if (r.proven_optimal) {
+            expect_pose(r.best, e.best, what + " (proven optimal)");
+            EXPECT_EQ(r.upper_bound, r.best.score) << what;
+          } else {
+            ++stopped;
+          }
+        }
+      }
+    }
+    // No budget, or one never reached: proven optimal, the exhaustive best.
+    for (double budget : {0.0, 1e9}) {
+      BranchAndBoundOptions o;
+      o.budget_ms = budget;
+      o.heading_intervals = c % 2 == 1;
+      expect_exact(search_branch_and_bound(lat, grids, pyramid, o), e, lat,
+                   "case " + std::to_string(c) + " budget " + std::to_string(budget));
+    }
+  }
+  EXPECT_GT(stopped, 0);  // a 1e-9 ms budget is over before the first node is expanded
+}
+
+TEST(SearchBranchAndBound, HeadingGridsCheckThePaddingAndTheLattice) {
+  GridGeometry geo;
+  geo.width = 12;
+  geo.height = 10;
+  geo.resolution = 0.1;
+  const EvidenceGrid g(geo, 0.0f);
+  const RangeScan scan{{0.0, 2.0}, {2.0, 1.0}, 5.0};  // the farthest point at 2 m: 20 cells
+  const ScanPoints points = scan_points(scan, {ScanModel::Samples, 2});
+  ASSERT_DOUBLE_EQ(points.max_norm, 2.0);
+  Lattice lat;
+  lat.x0 = 0, lat.x1 = 11, lat.y0 = 0, lat.y1 = 9;
+  lat.headings = 8;
+  lat.step_theta = 0.2;
+  for (int pad : {5, 19, 20}) {
+    const PaddedGrid narrow = pad_grid(g, pad);
+    test::expect_error([&] { HeadingGrids grids(lat, points_level(narrow, points)); },
+                       {"beyond the padding"});
+  }
+  const PaddedGrid wide = pad_grid(g, 23);
+  const SearchLevel level = points_level(wide, points);
+  const HeadingGrids grids(lat, level);
+  const BoundPyramid pyramid = make_bound_pyramid(wide, 3);
+  BranchAndBoundOptions o;
+  o.heading_intervals = true;
+  expect_exact(search_branch_and_bound(lat, grids, pyramid, o), search_exhaustive(lat, level), lat,
+               "zero grid");
+  Lattice other = lat;
+  other.step_theta = 0.1;
+  test::expect_error([&] { (void)search_branch_and_bound(other, grids, pyramid, o); },
+                     {"another lattice"});
+  SearchLevel none = level;
+  none.global = nullptr;
+  test::expect_error([&] { HeadingGrids bad(lat, none); }, {"no grid"});
 }
 
 }  // namespace
