@@ -2,16 +2,36 @@
 /// map at 0.05 m and two 360-beam laser scans (max range 8 m), scan-only estimator at 0.05 m.
 /// - BM_ApartmentPrecompute/<strategy>: estimator construction (global grids of 3 levels,
 ///   padded by the 8 m reach; bnb adds its bound pyramid). Not part of the timings below.
-/// - BM_ApartmentScanGrid/res_cm:<r>: rasterize_scan for the 121 headings of the windowed
-///   search of case 1 (items = local grids built), the cost that dominates the scan search.
-/// - BM_ApartmentScan/<case>/<strategy>: one estimate() per iteration. case1 and case2 search
-///   +-0.5 m, +-0.3 rad at 0.005 rad from the README's start poses; case1_wide searches +-2 m,
-///   +-30 deg at the step that moves the farthest return by one cell (see wide_step()).
+/// - BM_ApartmentScanGrid/<model>/res_cm:<r>: rasterize_scan under scan model hits, samples
+///   or rays (ScanModelOptions, default free_samples) for the 121 headings of the windowed
+///   search of case 1 (items = local grids built); every model at 5 cm, rays also at 10 and
+///   20 cm. For hits and samples each call also derives the scan's points (scan_points), which
+///   estimate() does once per call, not per heading.
+/// - BM_ApartmentScan/<case>/<strategy>/<model>[/threads:2][/intervals][/no_second_peak]: one
+///   estimate() per iteration.
+///   Cases: case1 and case2 search +-0.5 m, +-0.3 rad at 0.005 rad from the README's start
+///   poses; case1_wide searches +-2 m, +-30 deg at the step that moves the farthest return by
+///   one cell (see wide_step()); case1_global and case2_global search
+///   CorrelationEstimator::global_window(): the whole map and every heading, at that step.
+///   Strategies: bnb (every case), multires (windowed and wide), exhaustive (case1 only, one
+///   iteration per repetition). Models: hits and samples everywhere, rays also for case1 with
+///   bnb (slow: every crossed cell). Variants, bnb with hits and samples only: threads:2
+///   (CorrelationOptions::threads = 2; process CPU time), no_second_peak (second_peak = false:
+///   only the best pose, as the peers' figures), intervals (heading_intervals = true; case1
+///   and case1_global) and intervals/no_second_peak (the same two cases).
+///   Global rows take 0.1-2.5 s per call: they run a fixed iteration count, 1 in the default
+///   (smoke) set and kGlobalIterationsFull when GRIDLOC_BENCH_FULL=1 is set (the convention of
+///   bench_scaling.cpp). The slowest of them, the global samples rows that search the second
+///   peak (1-2.5 s per call), are registered only with GRIDLOC_BENCH_FULL=1, so that bench_smoke
+///   stays short; the default set keeps every global hits row and the samples rows with
+///   no_second_peak.
 /// Counters: pos_err_mm and heading_err_deg of the refined pose against truth.txt,
-/// poses_per_loc (poses scored), headings, step_theta_mrad, median_ms (estimator's own).
+/// poses_per_loc (poses scored), cells_per_s, headings, step_theta_mrad, median_ms (estimator's
+/// own elapsed_ms), proven (stats.proven_optimal, 1 or 0).
 /// Without ../shared every one of them is skipped with an error saying so.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -19,6 +39,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench_scenarios.hpp"
@@ -33,23 +54,36 @@ constexpr double kResolution = 0.05;    // README: estimator resolution 0.05 m
 constexpr double kMaxRange = 8.0;       // README: a range of 8.0 or more is no return
 constexpr double kStepTheta = 0.005;    // README: windowed search heading step (rad)
 constexpr int kWindowedHeadings = 121;  // +-0.3 rad at 0.005 rad
+constexpr int kGlobalIterationsFull = 3;
+
+enum class Kind { Windowed, Wide, Global };
 
 struct Case {
   const char* name;
   const char* dir;  ///< holds scan.csv and truth.txt, relative to the case folder
-  Pose2 start;
+  Pose2 start;      ///< unused for Kind::Global
   double half_xy;
   double half_theta;
-  bool wide;
+  Kind kind;
 };
 
 // Start poses from the README. The wide case gives only "1.44 m and 0.35 rad off" the truth
 // (2.30, 0.10, 0.600): we use the offset (+1.20, -0.80, +0.35), 1.442 m, a free cell.
 const Case kCases[] = {
-    {"case1", ".", {2.53, -0.07, 0.70}, 0.5, 0.3, false},
-    {"case2", "case2", {9.06, 8.34, -2.25}, 0.5, 0.3, false},
-    {"case1_wide", ".", {3.50, -0.70, 0.95}, 2.0, 0.523598775598, true},  // +-30 deg
+    {"case1", ".", {2.53, -0.07, 0.70}, 0.5, 0.3, Kind::Windowed},
+    {"case2", "case2", {9.06, 8.34, -2.25}, 0.5, 0.3, Kind::Windowed},
+    {"case1_wide", ".", {3.50, -0.70, 0.95}, 2.0, 0.523598775598, Kind::Wide},  // +-30 deg
+    {"case1_global", ".", {}, 0.0, 0.0, Kind::Global},
+    {"case2_global", "case2", {}, 0.0, 0.0, Kind::Global},
 };
+
+bool full_mode() {
+  static const bool full = [] {
+    const char* v = std::getenv("GRIDLOC_BENCH_FULL");
+    return v != nullptr && std::string(v) == "1";
+  }();
+  return full;
+}
 
 std::filesystem::path case_folder() {
   return std::filesystem::path(GRIDLOC_BENCH_SHARED_DIR) / "bench-cases" / "apartment";
@@ -93,24 +127,61 @@ const Inputs& inputs() {
   return in;
 }
 
-CorrelationOptions scan_options(SearchStrategy strategy) {
+std::string model_name(ScanModel m) {
+  switch (m) {
+    case ScanModel::Hits:
+      return "hits";
+    case ScanModel::Samples:
+      return "samples";
+    case ScanModel::Rays:
+      return "rays";
+  }
+  return "unknown";
+}
+
+/// What one BM_ApartmentScan row runs.
+struct Config {
+  SearchStrategy strategy = SearchStrategy::BranchAndBound;
+  ScanModel model = ScanModel::Samples;
+  int threads = 1;
+  bool intervals = false;
+  bool second_peak = true;
+
+  auto key() const { return std::tuple{strategy, model, threads, intervals, second_peak}; }
+  /// <strategy>/<model>[/threads:2][/intervals][/no_second_peak]
+  std::string name() const {
+    std::string n = strategy_name(strategy) + "/" + model_name(model);
+    if (threads != 1) n += "/threads:" + std::to_string(threads);
+    if (intervals) n += "/intervals";
+    if (!second_peak) n += "/no_second_peak";
+    return n;
+  }
+};
+
+CorrelationOptions scan_options(const Config& c) {
   CorrelationOptions o;
-  o.strategy = strategy;
+  o.strategy = c.strategy;
+  o.scan.model = c.model;
+  o.threads = c.threads;
+  o.heading_intervals = c.intervals;
+  o.second_peak = c.second_peak;
   o.resolution = kResolution;
   o.reach_m = kMaxRange;
   return o;
 }
 
-const CorrelationEstimator& scan_estimator(SearchStrategy strategy) {
-  static std::map<SearchStrategy, std::unique_ptr<CorrelationEstimator>> cache;
-  auto& slot = cache[strategy];
-  if (!slot) slot = std::make_unique<CorrelationEstimator>(inputs().map, scan_options(strategy));
+/// One estimator per configuration, built outside any timing loop and kept.
+const CorrelationEstimator& scan_estimator(const Config& c) {
+  static std::map<decltype(c.key()), std::unique_ptr<CorrelationEstimator>> cache;
+  auto& slot = cache[c.key()];
+  if (!slot) slot = std::make_unique<CorrelationEstimator>(inputs().map, scan_options(c));
   return *slot;
 }
 
 /// Wide-window heading step: the angle that moves the farthest return by one cell,
 /// acos(1 - res^2 / (2 r^2)) (Cartographer's choice for its correlative matchers): 6.4 mrad
-/// (0.37 deg) for case 1's 7.84 m. The windowed 0.005 rad (README) is finer than that.
+/// (0.37 deg) for case 1's 7.84 m. The windowed 0.005 rad (README) is finer than that. The
+/// same rule as global_window() (which also clamps it to [0.1, 5] deg).
 double wide_step(const RangeScan& scan) {
   double far = 0.0;
   for (double r : scan.ranges) {
@@ -132,16 +203,18 @@ void BM_ApartmentPrecompute(benchmark::State& state, SearchStrategy strategy) {
     state.SkipWithError(in.error.c_str());
     return;
   }
+  Config c;
+  c.strategy = strategy;
   for (auto _ : state) {
     // The constructor takes the map by value: its copy is part of the cost.
-    const CorrelationEstimator est(in.map, scan_options(strategy));
+    const CorrelationEstimator est(in.map, scan_options(c));
     benchmark::DoNotOptimize(&est.level(0));
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["map_cells"] = static_cast<double>(in.map.geometry.size());
 }
 
-void BM_ApartmentScanGrid(benchmark::State& state) {
+void BM_ApartmentScanGrid(benchmark::State& state, ScanModel model) {
   const Inputs& in = inputs();
   if (!in.error.empty()) {
     state.SkipWithError(in.error.c_str());
@@ -149,12 +222,15 @@ void BM_ApartmentScanGrid(benchmark::State& state) {
   }
   const double resolution = static_cast<double>(state.range(0)) / 100.0;
   const RangeScan& scan = in.scans.at(".");
+  ScanModelOptions options;
+  options.model = model;
   const Pose2 start = kCases[0].start;
   const double theta0 = start.theta - (kWindowedHeadings / 2) * kStepTheta;
   double cells = 0.0;
   for (auto _ : state) {
     for (int it = 0; it < kWindowedHeadings; ++it) {
-      const SparseLocalGrid g = rasterize_scan(scan, theta0 + it * kStepTheta, resolution);
+      const SparseLocalGrid g = rasterize_scan(scan, theta0 + it * kStepTheta, resolution,
+                                               Eigen::Vector2d::Zero(), options);
       benchmark::DoNotOptimize(g.value.data());
       cells += static_cast<double>(g.size());
     }
@@ -164,7 +240,7 @@ void BM_ApartmentScanGrid(benchmark::State& state) {
   state.counters["cells_per_grid"] = Counter(cells / kWindowedHeadings, Counter::kAvgIterations);
 }
 
-void BM_ApartmentScan(benchmark::State& state, const Case& c, SearchStrategy strategy) {
+void BM_ApartmentScan(benchmark::State& state, const Case& c, Config config) {
   const Inputs& in = inputs();
   if (!in.error.empty()) {
     state.SkipWithError(in.error.c_str());
@@ -173,9 +249,14 @@ void BM_ApartmentScan(benchmark::State& state, const Case& c, SearchStrategy str
   Observation obs;
   obs.scan = in.scans.at(c.dir);
   const Pose2& truth = in.truths.at(c.dir);
-  const double step = c.wide ? wide_step(*obs.scan) : kStepTheta;
-  const SearchWindow window{c.start, c.half_xy, c.half_theta, kResolution, step};
-  const CorrelationEstimator& est = scan_estimator(strategy);
+  const CorrelationEstimator& est = scan_estimator(config);
+  SearchWindow window;
+  if (c.kind == Kind::Global) {
+    window = est.global_window(obs);
+  } else {
+    const double step = c.kind == Kind::Wide ? wide_step(*obs.scan) : kStepTheta;
+    window = {c.start, c.half_xy, c.half_theta, kResolution, step};
+  }
 
   std::vector<double> elapsed_ms;
   std::optional<Estimate> last;
@@ -196,9 +277,38 @@ void BM_ApartmentScan(benchmark::State& state, const Case& c, SearchStrategy str
       std::abs(normalize_angle(last->pose.theta - truth.theta)) * 180.0 / std::numbers::pi;
   state.counters["poses_per_loc"] = static_cast<double>(last->stats.poses_scored);
   state.counters["cells_per_s"] = Counter(cells, Counter::kIsRate);
-  state.counters["headings"] = static_cast<double>(2 * std::lround(c.half_theta / step) + 1);
-  state.counters["step_theta_mrad"] = 1000.0 * step;
+  state.counters["headings"] =
+      static_cast<double>(2 * std::lround(window.half_theta / window.step_theta) + 1);
+  state.counters["step_theta_mrad"] = 1000.0 * window.step_theta;
   state.counters["median_ms"] = median(std::move(elapsed_ms));
+  state.counters["proven"] = last->stats.proven_optimal ? 1.0 : 0.0;
+}
+
+/// The BM_ApartmentScan rows of case `c`.
+std::vector<Config> configs(const Case& c) {
+  const std::string name = c.name;
+  const bool case1 = name == "case1", global = c.kind == Kind::Global;
+  const bool intervals = case1 || name == "case1_global";
+  std::vector<Config> out;
+  for (ScanModel m : {ScanModel::Hits, ScanModel::Samples}) {
+    if (!global) out.push_back({SearchStrategy::Multires, m});
+  }
+  for (ScanModel m : {ScanModel::Hits, ScanModel::Samples}) {
+    out.push_back({SearchStrategy::BranchAndBound, m});
+    out.push_back({SearchStrategy::BranchAndBound, m, 1, false, false});  // no_second_peak
+    out.push_back({SearchStrategy::BranchAndBound, m, 2});                // threads:2
+    if (intervals) {
+      out.push_back({SearchStrategy::BranchAndBound, m, 1, true});
+      out.push_back({SearchStrategy::BranchAndBound, m, 1, true, false});
+    }
+  }
+  if (case1) {
+    out.push_back({SearchStrategy::BranchAndBound, ScanModel::Rays});
+    for (ScanModel m : {ScanModel::Hits, ScanModel::Samples}) {
+      out.push_back({SearchStrategy::Exhaustive, m});
+    }
+  }
+  return out;
 }
 
 const bool registered = [] {
@@ -207,22 +317,29 @@ const bool registered = [] {
                                  BM_ApartmentPrecompute, s)
         ->Unit(benchmark::kMillisecond);
   }
-  benchmark::RegisterBenchmark("BM_ApartmentScanGrid", BM_ApartmentScanGrid)
-      ->ArgName("res_cm")
-      ->Arg(5)
-      ->Arg(10)
-      ->Arg(20)
-      ->Unit(benchmark::kMillisecond);
+  for (ScanModel m : {ScanModel::Hits, ScanModel::Samples, ScanModel::Rays}) {
+    auto* b = benchmark::RegisterBenchmark(("BM_ApartmentScanGrid/" + model_name(m)).c_str(),
+                                           BM_ApartmentScanGrid, m)
+                  ->ArgName("res_cm")
+                  ->Arg(5)
+                  ->Unit(benchmark::kMillisecond);
+    if (m == ScanModel::Rays) b->Arg(10)->Arg(20);
+  }
   for (const Case& c : kCases) {
-    for (SearchStrategy s :
-         {SearchStrategy::Multires, SearchStrategy::BranchAndBound, SearchStrategy::Exhaustive}) {
-      const bool exhaustive = s == SearchStrategy::Exhaustive;
-      if (exhaustive && std::string(c.name) != "case1") continue;  // seconds per call
-      const std::string name = "BM_ApartmentScan/" + std::string(c.name) + "/" + strategy_name(s);
-      auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_ApartmentScan, c, s)
+    for (const Config& config : configs(c)) {
+      const bool slow =
+          c.kind == Kind::Global && config.model == ScanModel::Samples && config.second_peak;
+      if (slow && !full_mode()) continue;
+      const std::string name = "BM_ApartmentScan/" + std::string(c.name) + "/" + config.name();
+      auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_ApartmentScan, c, config)
                     ->UseRealTime()
                     ->Unit(benchmark::kMillisecond);
-      if (exhaustive) b->Iterations(1);
+      if (config.threads > 1) b->MeasureProcessCPUTime();
+      if (config.strategy == SearchStrategy::Exhaustive) {
+        b->Iterations(1);
+      } else if (c.kind == Kind::Global) {
+        b->Iterations(full_mode() ? kGlobalIterationsFull : 1);
+      }
     }
   }
   return true;

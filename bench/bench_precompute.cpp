@@ -1,5 +1,6 @@
-/// Once-per-map costs. BM_Precompute/<map>: CorrelationEstimator construction (global grids
-/// of the 3 levels, resampled, thinned and padded). BM_GlobalGrid/<map>/<model>:
+/// Once-per-map costs. BM_Precompute/<map>: CorrelationEstimator construction with default
+/// options (global grids of the 3 levels, resampled, thinned and padded; the default strategy,
+/// bnb, adds its bound pyramid). BM_GlobalGrid/<map>/<model>:
 /// make_global_grid alone at 0.10 m, thinned (seed 001 §5) vs raw.
 #include <string>
 

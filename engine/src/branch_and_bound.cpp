@@ -206,7 +206,7 @@ void HeadingGrids::make_all() const {
 
 namespace {
 
-/// One branch-and-bound search: the shared best-first queue, the incumbent and the bounds.
+/// One branch-and-bound search: per-thread best-first heaps, the shared incumbent, the bounds.
 class Search {
  public:
   Search(const Lattice& lattice, const HeadingGrids& grids, const BoundPyramid& pyramid,
@@ -271,20 +271,29 @@ class Search {
           for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
         }
       }
-      push_all(w.children);
+      // Each thread searches its own best-first heap, sharing only the incumbent: the roots
+      // are dealt out in visit order, so every thread gets a share of the promising ones.
+      const int threads = std::max(1, opt_.threads);
+      std::sort(w.children.begin(), w.children.end(), visit_before);
+      heaps_.assign(static_cast<std::size_t>(threads), {});
+      for (std::size_t k = 0; k < w.children.size(); ++k) {
+        heaps_[k % heaps_.size()].push_back(w.children[k]);
+      }
+      for (auto& heap : heaps_) std::make_heap(heap.begin(), heap.end(), heap_less);
       w.merge();
     }
-    const int threads = std::max(1, opt_.threads);
-    if (threads == 1) {
-      work();
+    if (heaps_.size() == 1) {
+      work(heaps_.front());
     } else {
       std::vector<std::thread> pool;
-      for (int t = 1; t < threads; ++t) pool.emplace_back([this] { work(); });
-      work();
+      for (std::size_t t = 1; t < heaps_.size(); ++t) {
+        pool.emplace_back([this, t] { work(heaps_[t]); });
+      }
+      work(heaps_.front());
       for (auto& t : pool) t.join();
     }
     if (error_) std::rethrow_exception(error_);
-    return finish(stopped_);
+    return finish(stopped_.load());
   }
 
  private:
@@ -444,67 +453,47 @@ class Search {
 
   static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
 
-  void push_all(std::vector<Node>& nodes) {
-    std::lock_guard<std::mutex> lock(mu_);
-    for (const Node& n : nodes) {
-      open_.push_back(n);
-      std::push_heap(open_.begin(), open_.end(), heap_less);
-    }
-    nodes.clear();
-  }
-
-  /// One thread's loop: pop the best open node, expand it outside the lock, push its children.
-  void work() {
+  /// One thread's loop over its own heap: pop the best node while it could still beat the
+  /// shared incumbent, expand it, keep its promising children.
+  void work(std::vector<Node>& heap) {
     Worker w(*this);
     try {
-      for (;;) {
-        Node n;
-        {
-          std::unique_lock<std::mutex> lock(mu_);
-          for (;;) {
-            if (error_ || stopped_) break;
-            if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
-              stopped_ = true;
-              break;
-            }
-            const bool can_pop = !open_.empty() && promising(open_.front());
-            if (can_pop) break;
-            if (busy_ == 0) break;  // nothing open can win and nobody will add more: done
-            lock.unlock();
-            std::this_thread::yield();
-            lock.lock();
-          }
-          if (error_ || stopped_ || open_.empty() || !promising(open_.front())) break;
-          std::pop_heap(open_.begin(), open_.end(), heap_less);
-          n = open_.back();
-          open_.pop_back();
-          ++busy_;
+      while (!heap.empty() && !stopped_.load(std::memory_order_relaxed)) {
+        if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
+          stopped_ = true;
+          break;
         }
+        if (!promising_fast(heap.front())) break;  // nothing left here can win
+        std::pop_heap(heap.begin(), heap.end(), heap_less);
+        const Node n = heap.back();
+        heap.pop_back();
         w.expand(n);
-        {
-          std::lock_guard<std::mutex> lock(mu_);
-          for (const Node& c : w.children) {
-            if (!promising(c)) continue;
-            open_.push_back(c);
-            std::push_heap(open_.begin(), open_.end(), heap_less);
-          }
-          --busy_;
+        for (const Node& c : w.children) {
+          heap.push_back(c);
+          std::push_heap(heap.begin(), heap.end(), heap_less);
         }
         w.children.clear();
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(mu_);
       if (!error_) error_ = std::current_exception();
-      --busy_;
+      stopped_ = true;
     }
     w.merge();
   }
 
   SearchResult finish(bool stopped) {
-    if (stopped && !found_ && !open_.empty()) {
+    // The open nodes that could still win (after the threads stopped: no lock needed).
+    std::vector<Node> open;
+    for (const auto& heap : heaps_) {
+      for (const Node& n : heap) {
+        if (promising(n)) open.push_back(n);
+      }
+    }
+    if (stopped && !found_ && !open.empty()) {
       // Out of time before any pose was scored: dive from the best open node to a leaf.
       Worker w(*this);
-      Node n = open_.front();
+      Node n = *std::min_element(open.begin(), open.end(), visit_before);
       while (!found_) {
         w.expand(n);
         if (found_ || w.children.empty()) break;
@@ -514,10 +503,12 @@ class Search {
       w.merge();
     }
     result_.best = best_;
-    result_.proven_optimal = !stopped || open_.empty() || !promising(open_.front());
+    result_.proven_optimal = true;
     result_.upper_bound = best_.score;
-    if (!result_.proven_optimal) {
-      for (const Node& n : open_) result_.upper_bound = std::max(result_.upper_bound, n.bound);
+    for (const Node& n : open) {
+      if (!promising(n)) continue;  // (the dive may have raised the incumbent)
+      result_.proven_optimal = false;
+      result_.upper_bound = std::max(result_.upper_bound, n.bound);
     }
     return std::move(result_);
   }
@@ -535,13 +526,13 @@ class Search {
   std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
 
-  mutable std::mutex mu_;  // guards everything below
-  std::vector<Node> open_;
+  std::vector<std::vector<Node>> heaps_;  ///< one best-first heap per thread
+
+  mutable std::mutex mu_;  // guards the incumbent, the error and the result
   LatticePose best_;
   bool found_ = false;
   std::atomic<double> best_score_{-std::numeric_limits<double>::infinity()};
-  int busy_ = 0;
-  bool stopped_ = false;
+  std::atomic<bool> stopped_{false};
   std::exception_ptr error_;
   SearchResult result_;
 };

@@ -84,7 +84,8 @@ struct Exclusion {
            std::hypot(ix - center.ix, iy - center.iy) <= radius_cells;
   }
   /// True when every translation of [x0, x1] x [y0, y1] at every heading of [it0, it1] is
-  /// excluded (a disc holds a rectangle when it holds its corners).
+  /// excluded: the heading and disc tests are independent, so the interval's two ends and
+  /// the rectangle's four corners (a disc holds a rectangle when it holds its corners) do.
   bool contains_block(int it0, int it1, int x0, int y0, int x1, int y1) const {
     return contains(x0, y0, it0) && contains(x0, y0, it1) && contains(x1, y0, it0) &&
            contains(x0, y1, it0) && contains(x1, y1, it0);
@@ -143,8 +144,9 @@ struct BranchAndBoundOptions {
   /// either way; on the apartment peer case it prunes more headings unopened but its bounds
   /// are looser, so it was slower than one node per heading (bench/RESULTS.md).
   bool heading_intervals = false;
-  /// Threads expanding blocks of one shared best-first queue. The result does not depend on
-  /// it (exact); the counters and `scored` do.
+  /// Threads, each searching its own best-first heap of a share of the top-level nodes and
+  /// pruning with the shared incumbent. The result does not depend on it (exact); the
+  /// counters and `scored` do.
   int threads = 1;
 };
 
