@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -224,7 +225,10 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   e.lattice_pose = to_world(r.best.ix, r.best.iy, r.best.it);
   e.pose = e.lattice_pose;
   if (options_.refine) {
-    const RefinedPose refined = refine(r.best, lattice, levels.front());
+    // Branch and bound already built the lattice headings' grids: refinement reuses them.
+    std::function<const PlacedLocalGrid*(int)> built;
+    if (grids) built = [&](int it) { return &grids->placed(it); };
+    const RefinedPose refined = refine(r.best, lattice, levels.front(), 4, built);
     e.pose = to_world(refined.ix, refined.iy, refined.it);
   }
   e.score = r.best.score;

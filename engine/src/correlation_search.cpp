@@ -183,7 +183,8 @@ double parabola_vertex(double a, double b, double c) {
 }  // namespace
 
 RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
-                   int subdivisions) {
+                   int subdivisions,
+                   const std::function<const PlacedLocalGrid*(int it)>& lattice_grid) {
   const PaddedGrid& g = *finest.global;
   const int sub = std::max(1, subdivisions);
   const Eigen::Vector2d zero = Eigen::Vector2d::Zero();
@@ -192,7 +193,13 @@ RefinedPose refine(const LatticePose& best, const Lattice& lattice, const Search
 
   // Heading: 3 x 3 cells x (2 sub + 1) headings.
   std::vector<PlacedLocalGrid> placed;
-  for (int j = -sub; j <= sub; ++j) placed.push_back(place(finest.make_local(heading(j), zero), g));
+  for (int j = -sub; j <= sub; ++j) {
+    const int it = best.it + j / sub;  // the lattice heading, when j is a whole step
+    const PlacedLocalGrid* built = j % sub == 0 && it >= 0 && it < lattice.headings && lattice_grid
+                                       ? lattice_grid(it)
+                                       : nullptr;
+    placed.push_back(built ? *built : place(finest.make_local(heading(j), zero), g));
+  }
   auto placed_at = [&](int j) -> const PlacedLocalGrid& {
     return placed[static_cast<std::size_t>(j + sub)];
   };

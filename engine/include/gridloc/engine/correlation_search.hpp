@@ -139,7 +139,10 @@ struct RefinedPose {
 /// (offset clamped to half a step; an axis whose neighbour leaves the map or scores higher
 /// stays put). The model is rebuilt for every sub-step heading, never rotated. Returns
 /// lattice units.
+/// `lattice_grid`, when given, returns the already placed local grid of lattice heading it
+/// (or nullptr): refinement then reuses it instead of building it again (the same grid).
 RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
-                   int subdivisions = 4);
+                   int subdivisions = 4,
+                   const std::function<const PlacedLocalGrid*(int it)>& lattice_grid = {});
 
 }  // namespace gridloc
