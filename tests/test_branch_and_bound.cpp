@@ -20,17 +20,16 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/range_scan.hpp"
+#include "random_cases.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
 namespace {
 
-int uniform_int(std::mt19937& rng, int lo, int hi) {  // inclusive; portable, unlike <random>'s
-  return lo + static_cast<int>(rng() % static_cast<unsigned>(hi - lo + 1));
-}
-float uniform_float(std::mt19937& rng, float lo, float hi) {
-  return lo + (hi - lo) * static_cast<float>(static_cast<double>(rng()) / 4294967296.0);
-}
+using test::random_scan;
+using test::uniform_float;
+using test::uniform_int;
+using test::uniform_real;
 
 constexpr ArcRule kRules[] = {ArcRule::Neutral, ArcRule::Signed};
 
@@ -492,10 +491,6 @@ TEST(SearchBranchAndBound, RejectsBadInput) {
 
 // --- Rigid scan points: heading-interval bounds, exclusion, incumbent, budget, threads ------
 
-double uniform_real(std::mt19937& rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
-}
-
 /// Rooms like a thinned map: +1 one-cell contours around -1 interiors, unknown elsewhere.
 EvidenceGrid make_rooms(std::mt19937& rng, int w, int h) {
   GridGeometry geo;
@@ -518,27 +513,6 @@ EvidenceGrid make_rooms(std::mt19937& rng, int w, int h) {
     }
   }
   return g;
-}
-
-/// A random scan: even or random angles, ranges in [0, max_range) with some beams without
-/// a return; at least one return (validate() requires it).
-RangeScan random_scan(std::mt19937& rng, int beams, double max_range) {
-  RangeScan scan;
-  scan.max_range = max_range;
-  const bool even = uniform_int(rng, 0, 1) == 0;
-  const double a0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
-  for (int k = 0; k < beams; ++k) {
-    scan.angles.push_back(even ? a0 + 2.0 * std::numbers::pi * k / beams
-                               : uniform_real(rng, -std::numbers::pi, std::numbers::pi));
-    const int kind = uniform_int(rng, 0, 9);
-    scan.ranges.push_back(kind == 0 ? max_range + uniform_real(rng, 0.0, 1.0)
-                                    : uniform_real(rng, 0.0, max_range));
-  }
-  if (std::none_of(scan.ranges.begin(), scan.ranges.end(),
-                   [&](double r) { return r < max_range; })) {
-    scan.ranges[0] = 0.5 * max_range;
-  }
-  return scan;
 }
 
 /// The scan a robot at cell (tx, ty) + a sub-cell offset with heading theta sees on g (cells

@@ -7,13 +7,12 @@
 #include <random>
 
 #include "gridloc/grids/error.hpp"
+#include "random_cases.hpp"
 
 namespace gridloc {
 namespace {
 
-int uniform_int(std::mt19937& rng, int lo, int hi) {  // inclusive; portable, unlike <random>'s
-  return lo + static_cast<int>(rng() % static_cast<unsigned>(hi - lo + 1));
-}
+using test::uniform_int;
 
 Grid<float> random_grid(std::mt19937& rng, int w, int h) {
   GridGeometry g;

@@ -20,10 +20,15 @@
 
 #include "gridloc/engine/correlation_estimator.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "random_cases.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
 namespace {
+
+using test::random_scan;
+using test::uniform_int;
+using test::uniform_real;
 
 constexpr double kRes = 0.1;
 
@@ -36,9 +41,13 @@ double sum_of(const SparseLocalGrid& g, bool positive) {
 TEST(RangeScan, OneBeamHasAnEndCellAndMinusOneBeforeIt) {
   for (double angle : {0.0, 0.4, 1.9, -2.7}) {
     const RangeScan scan{{angle}, {3.0}, 8.0};
-    const SparseLocalGrid g = rasterize_scan(scan, 0.25, kRes);
+    for (ScanModel model : {ScanModel::Rays, ScanModel::Samples}) {
+      const SparseLocalGrid f = rasterize_scan(scan, 0.25, kRes, {}, {model, 4});
+      EXPECT_NEAR(sum_of(f, false), -1.0, 1e-5) << angle;  // the free part shares -1
+    }
+    const SparseLocalGrid g = rasterize_scan(scan, 0.25, kRes);  // hits: the end cell only
+    EXPECT_EQ(g.size(), 1u) << angle;
     EXPECT_DOUBLE_EQ(sum_of(g, true), 1.0) << angle;
-    EXPECT_NEAR(sum_of(g, false), -1.0, 1e-5) << angle;
     // The end cell is where the beam ends.
     const double a = 0.25 + angle;
     const int ex = static_cast<int>(std::floor(3.0 * std::cos(a) / kRes + 0.5));
@@ -153,36 +162,6 @@ TEST(RangeScanEstimator, SharedApartmentCases) {
 }
 
 // --- Rigid scan points (ScanModel::Samples and Hits) and their rasterization ---------------
-
-int uniform_int(std::mt19937& rng, int lo, int hi) {  // inclusive; portable, unlike <random>'s
-  return lo + static_cast<int>(rng() % static_cast<unsigned>(hi - lo + 1));
-}
-double uniform_real(std::mt19937& rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
-}
-
-/// A random scan: even or random angles, ranges in (0, max_range) with some beams without a
-/// return (at or beyond the max range) and some of range 0; at least one return.
-RangeScan random_scan(std::mt19937& rng, int beams, double max_range) {
-  RangeScan scan;
-  scan.max_range = max_range;
-  const bool even = uniform_int(rng, 0, 1) == 0;
-  const double a0 = uniform_real(rng, -std::numbers::pi, std::numbers::pi);
-  for (int k = 0; k < beams; ++k) {
-    scan.angles.push_back(even ? a0 + 2.0 * std::numbers::pi * k / beams
-                               : uniform_real(rng, -std::numbers::pi, std::numbers::pi));
-    const int kind = uniform_int(rng, 0, 19);
-    double r = uniform_real(rng, 0.0, max_range);
-    if (kind < 3) r = kind == 0 ? max_range : max_range + uniform_real(rng, 0.0, 3.0);
-    if (kind == 3) r = 0.0;
-    scan.ranges.push_back(r);
-  }
-  if (std::none_of(scan.ranges.begin(), scan.ranges.end(),
-                   [&](double r) { return r < max_range; })) {
-    scan.ranges[0] = 0.5 * max_range;
-  }
-  return scan;
-}
 
 /// The brute-force rasterization of rigid points: each point's cell by point_cell; a cell
 /// holding a beam end is exactly +1, any other the float sum of its free samples' weights in
@@ -322,12 +301,11 @@ TEST(RangeScanRasterizePoints, EqualsBruteForceReferenceOnRandomScans) {
   EXPECT_GT(cells, 20000);
 }
 
-TEST(RangeScanRasterizePoints, DefaultModelIsFourSamples) {
+TEST(RangeScanRasterizePoints, DefaultModelIsHits) {
   std::mt19937 rng(8);
   const RangeScan scan = random_scan(rng, 50, 5.0);
   expect_same_grid(rasterize_scan(scan, 0.7, 0.05),
-                   rasterize_points(scan_points(scan, {ScanModel::Samples, 4}), 0.7, 0.05),
-                   "default");
+                   rasterize_points(scan_points(scan, {ScanModel::Hits, 4}), 0.7, 0.05), "default");
 }
 
 /// Sparse canvases collect by radix-sorting the written cells, dense ones by walking their

@@ -97,8 +97,8 @@ void SearchArgs::add_to(CLI::App* cmd) {
   cmd->add_option("--threads", threads, "threads scoring headings in parallel (same result)")
       ->capture_default_str();
   cmd->add_option("--scan-model", scan_model,
-                  "scan local grid: samples (end cells + free samples) | rays (every crossed "
-                  "cell) | hits (end cells only)")
+                  "scan local grid: hits (end cells only) | samples (end cells + free samples) "
+                  "| rays (end cells + every crossed cell)")
       ->capture_default_str();
   cmd->add_option("--free-samples", free_samples, "free samples per beam (--scan-model samples)")
       ->capture_default_str();
@@ -126,9 +126,8 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   o.budget_ms = budget_ms;
   o.heading_intervals = heading_intervals;
   o.second_peak = !no_second_peak;
-  try {
-    validate(o.scan);
-  } catch (const Error&) {
+  // Checked whatever the model: a bad number is a mistake even where it is not used.
+  if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));
   }
 }

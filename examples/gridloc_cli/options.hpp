@@ -27,7 +27,7 @@ struct SearchArgs {
   std::string arc_rule = "neutral";
   double arc_depth = SonarModelOptions{}.arc_depth_cells;
   int threads = 1;
-  std::string scan_model = "samples";
+  std::string scan_model = "hits";
   int free_samples = ScanModelOptions{}.free_samples;
   double budget_ms = 0.0;
   bool heading_intervals = false;
