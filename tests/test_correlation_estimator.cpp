@@ -204,7 +204,9 @@ TEST_F(Estimator, MultiresAgreesWithExhaustive) {
 }
 
 TEST_F(Estimator, LevelsAreBuiltAtTheirResolutions) {
-  const CorrelationEstimator est(map("room_rect"), ring());
+  // Exact strategies search the finest grid only: they build no other.
+  EXPECT_THROW(CorrelationEstimator(map("room_rect"), ring()).level(1), std::out_of_range);
+  const CorrelationEstimator est(map("room_rect"), ring(), options(SearchStrategy::Multires));
   for (int l = 0; l < 3; ++l) {
     const PaddedGrid& p = est.level(l);
     EXPECT_NEAR(p.grid.geometry.resolution, 0.1 * (1 << l), 1e-12);

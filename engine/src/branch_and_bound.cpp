@@ -92,9 +92,11 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
   p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
   EvidenceGrid arc = global.grid;  // arc_view with the padded geometry
   arc.cells = global.arc_view;
-  for (int h = 1; h <= depth; ++h) {
-    p.arc_max[static_cast<std::size_t>(h)] = max_pool(arc, 1 << h);
-    p.grid_min[static_cast<std::size_t>(h)] = min_pool(global.grid, 1 << h);
+  for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
+    const auto l = static_cast<std::size_t>(h);
+    const int half = 1 << (h - 1);
+    p.arc_max[l] = max_pool_doubled(h == 1 ? arc : p.arc_max[l - 1], half);
+    p.grid_min[l] = min_pool_doubled(h == 1 ? global.grid : p.grid_min[l - 1], half);
   }
   if (!arc.cells.empty()) {
     p.arc_max_all = *std::max_element(arc.cells.begin(), arc.cells.end());

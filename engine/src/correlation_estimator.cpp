@@ -95,7 +95,9 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.reach_m));
   }
   reach_ = std::max(options_.reach_m, ring_.sonars.empty() ? 0.0 : ring_.reach());
-  for (int l = 0; l < options_.levels; ++l) {
+  // Only the multiresolution search reads the coarser levels.
+  const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
+  for (int l = 0; l < built; ++l) {
     const double res = level_resolution(options_.resolution, l);
     const int pad = static_cast<int>(std::ceil(reach_ / res)) + 3;
     levels_.push_back(

@@ -12,6 +12,13 @@ Grid<float> max_pool(const Grid<float>& g, int size);
 /// As max_pool, with the minimum.
 Grid<float> min_pool(const Grid<float>& g, int size);
 
+/// max_pool(g, 2 * size) from pooled = max_pool(g, size), exactly, in two vectorized passes of
+/// one max per cell each: how a pyramid of sizes 2, 4, 8, ... is built fast. Throws
+/// gridloc::Error if size < 1.
+Grid<float> max_pool_doubled(const Grid<float>& pooled, int size);
+/// As max_pool_doubled, with the minimum.
+Grid<float> min_pool_doubled(const Grid<float>& pooled, int size);
+
 /// Plain O(cells * size^2) loops computing what max_pool does: the oracle for tests.
 Grid<float> max_pool_reference(const Grid<float>& g, int size);
 /// Plain O(cells * size^2) loops computing what min_pool does: the oracle for tests.
