@@ -78,8 +78,9 @@ class Canvas {
       arc_[idx] = free_[idx] = 0.0f;
       written_[idx] = 0;
     };
-    if (touched_.size() * 64 < static_cast<std::size_t>(side_) * side_) {
-      // Sparse (scan points): sorting the written cells beats walking their bounding box.
+    if (touched_.size() * 8 < static_cast<std::size_t>(side_) * side_) {
+      // Sparse (scan points, sonar cones): radix-sorting the written cells beats walking
+      // their bounding box; measured, not derived (ray scans stay dense).
       radix_sort(touched_);
       if (!touched_.empty()) row = touched_.front() / side_, row_start = row * side_;
       for (int idx : touched_) emit(idx);

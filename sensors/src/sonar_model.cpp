@@ -33,7 +33,8 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
   // Arc: for each layer (the echo range, and +-arc_depth cells around it when asked), the
   // ordered distinct cells along the arc, thinned to an 8-connected chain by dropping the
   // corner cell of every 4-connected step.
-  std::vector<int> arc;
+  thread_local std::vector<int> arc;  // reused: a grid draws 14 cones, a search many grids
+  arc.clear();
   if (echo) {
     const double depth = options.arc_depth_cells * res;
     const int layers = depth > 0.0 ? 1 : 0;
@@ -58,10 +59,13 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
 
   // Free sector: cells swept by the cone before the arc, sampled every half cell along
   // and across the cone (directions computed once, thinned out at short range).
-  std::vector<int> free_cells;
+  thread_local std::vector<int> free_cells;
+  thread_local std::vector<double> ux, uy;
+  free_cells.clear();
   const double step = 0.5 * res;
   const int m_max = std::max(2, static_cast<int>(std::ceil(s.cone * free_limit / step)) + 1);
-  std::vector<double> ux(m_max), uy(m_max);
+  ux.resize(static_cast<std::size_t>(m_max));
+  uy.resize(static_cast<std::size_t>(m_max));
   for (int k = 0; k < m_max; ++k) {
     const double a = axis - 0.5 * s.cone + s.cone * k / (m_max - 1);
     ux[k] = std::cos(a);
