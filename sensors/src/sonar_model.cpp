@@ -18,8 +18,24 @@ int angular_samples(double cone, double rho, double res) {
   return std::max(2, static_cast<int>(std::ceil(cone * rho / (0.25 * res))) + 1);
 }
 
+/// Per-thread buffers of add_cone, reused: a grid draws 14 cones, a search many grids.
+struct ConeScratch {
+  std::vector<int> arc, free_cells;
+  std::vector<double> ux, uy;
+  static ConeScratch& for_this_thread() {
+    thread_local ConeScratch scratch;
+    return scratch;
+  }
+};
+
 void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
               const Eigen::Vector2d& centre, const SonarModelOptions& options) {
+  // References taken once: thread-local lookups stay out of the loops.
+  ConeScratch& scratch = ConeScratch::for_this_thread();
+  std::vector<int>& arc = scratch.arc;
+  std::vector<int>& free_cells = scratch.free_cells;
+  std::vector<double>& ux = scratch.ux;
+  std::vector<double>& uy = scratch.uy;
   const std::uint32_t pass_arc = canvas.new_pass(), pass_free = canvas.new_pass();
   const double res = canvas.resolution();
   // seed 001 eq. (3), in this project's axes (x forward): sensor at (r, beta + theta), axis
@@ -33,7 +49,6 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
   // Arc: for each layer (the echo range, and +-arc_depth cells around it when asked), the
   // ordered distinct cells along the arc, thinned to an 8-connected chain by dropping the
   // corner cell of every 4-connected step.
-  thread_local std::vector<int> arc;  // reused: a grid draws 14 cones, a search many grids
   arc.clear();
   if (echo) {
     const double depth = options.arc_depth_cells * res;
@@ -59,8 +74,6 @@ void add_cone(Canvas& canvas, const SonarSpec& s, double d, double theta,
 
   // Free sector: cells swept by the cone before the arc, sampled every half cell along
   // and across the cone (directions computed once, thinned out at short range).
-  thread_local std::vector<int> free_cells;
-  thread_local std::vector<double> ux, uy;
   free_cells.clear();
   const double step = 0.5 * res;
   const int m_max = std::max(2, static_cast<int>(std::ceil(s.cone * free_limit / step)) + 1);
