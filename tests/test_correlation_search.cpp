@@ -99,6 +99,40 @@ TEST(Place, ArcCellsFirstThenFreeCellsEachInLocalOrder) {
   EXPECT_EQ(placed.offset, (std::vector<std::ptrdiff_t>{-10, 3, -9, -2, 20}));
 }
 
+// place_points builds what place(rasterize_points(...)) builds, offset for offset and bit for
+// bit, in the same order (branch and bound uses the first, the other strategies the second).
+TEST(Place, PointsEqualPlacedRasterizedPoints) {
+  Rng rng(31);
+  for (int c = 0; c < 300; ++c) {
+    RangeScan scan;
+    scan.max_range = 1.0 + rng.uniform(0.0, 5.0);
+    const int beams = uniform_int(rng, 1, 120);
+    for (int k = 0; k < beams; ++k) {
+      scan.angles.push_back(rng.uniform(-3.2, 3.2));
+      // Some beams without a return, some very short; at least one return.
+      const double r =
+          k == 0 || rng.uniform(0.0, 1.0) < 0.9 ? rng.uniform(0.0, scan.max_range) : scan.max_range;
+      scan.ranges.push_back(r);
+    }
+    const double res = c % 2 == 0 ? 0.05 : 0.1;
+    const ScanModelOptions model{c % 3 == 0 ? ScanModel::Hits : ScanModel::Samples,
+                                 uniform_int(rng, 1, 7)};
+    const ScanPoints points = scan_points(scan, model);
+    GridGeometry geo;
+    geo.resolution = res;
+    geo.width = uniform_int(rng, 1, 30);
+    geo.height = uniform_int(rng, 1, 30);
+    const PaddedGrid g =
+        pad_grid(EvidenceGrid(geo, 0.0f), static_cast<int>(std::ceil(scan.max_range / res)) + 3);
+    const double theta = rng.uniform(-4.0, 4.0);
+    const PlacedLocalGrid a = place_points(points, theta, g);
+    const PlacedLocalGrid b = place(rasterize_points(points, theta, res), g);
+    EXPECT_EQ(a.offset, b.offset) << "case " << c;
+    EXPECT_EQ(a.value, b.value) << "case " << c;
+    EXPECT_EQ(a.arc_count, b.arc_count) << "case " << c;
+  }
+}
+
 TEST(Score, FastScoreEqualsReferenceExactly) {
   Rng rng(2024);
   int compared = 0;

@@ -151,6 +151,10 @@ HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
 const PlacedLocalGrid& HeadingGrids::placed(int it) const {
   Entry& e = entries_[static_cast<std::size_t>(it)];
   std::call_once(e.placed_once, [&] {
+    if (level_.points != nullptr) {  // make_local's grid, without the detour (tested equal)
+      e.placed = place_points(*level_.points, lattice_.theta(it), *level_.global);
+      return;
+    }
     const SparseLocalGrid local = level_.make_local(lattice_.theta(it), Eigen::Vector2d::Zero());
     const int extent = local.size() > 0 ? local.extent() : 0;
     if (extent > level_.global->pad) {

@@ -5,6 +5,8 @@
 #include <limits>
 #include <tuple>
 
+#include "gridloc/grids/radix_sort.hpp"
+
 namespace gridloc {
 namespace {
 
@@ -98,6 +100,57 @@ PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
       p.value.push_back(local.value[k]);
     }
     if (pass == 0) p.arc_count = p.value.size();
+  }
+  return p;
+}
+
+PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global) {
+  const double inv = 1.0 / global.grid.geometry.resolution;
+  const double c = std::cos(theta), s = std::sin(theta);
+  const std::ptrdiff_t w = global.grid.width();
+  auto offset_of = [&](std::size_t k) {
+    const Eigen::Vector2i cell = point_cell(points, k, c, s, inv);
+    return static_cast<std::ptrdiff_t>(cell.y()) * w + cell.x();
+  };
+  // Offsets sort as (dy, dx) do (|dx| <= pad < w / 2): place()'s order. A cell holding a beam
+  // end is +1; any other cell the float sum of its free samples in point order, as the
+  // canvas adds them.
+  // Keys: the offset made non-negative in the high 32 bits, the point index below, so that
+  // a stable sort on the high bits keeps point order within a cell.
+  const std::ptrdiff_t bias = static_cast<std::ptrdiff_t>(global.pad) * w + global.pad;
+  const int bits = bits_below(static_cast<std::uint64_t>(global.grid.cells.size()));
+  thread_local std::vector<std::uint64_t> keys, scratch;
+  auto sorted_keys = [&](std::size_t k0, std::size_t k1) -> std::vector<std::uint64_t>& {
+    keys.clear();
+    for (std::size_t k = k0; k < k1; ++k) {
+      keys.push_back(static_cast<std::uint64_t>(offset_of(k) + bias) << 32 | k);
+    }
+    radix_sort(keys, scratch, 32, bits);
+    return keys;
+  };
+  auto offset_in = [&](std::uint64_t key) { return static_cast<std::ptrdiff_t>(key >> 32) - bias; };
+  PlacedLocalGrid p;
+  p.offset.reserve(points.size());
+  p.value.reserve(points.size());
+  for (std::uint64_t key : sorted_keys(0, points.hit_count)) {
+    const std::ptrdiff_t o = offset_in(key);
+    if (p.offset.empty() || p.offset.back() != o) p.offset.push_back(o);
+  }
+  p.arc_count = p.offset.size();
+  p.value.assign(p.arc_count, 1.0f);
+  const auto& frees = sorted_keys(points.hit_count, points.size());
+  std::size_t h = 0;  // walks the hit offsets alongside (both sorted)
+  for (std::size_t i = 0; i < frees.size();) {
+    const std::ptrdiff_t o = offset_in(frees[i]);
+    float sum = 0.0f;
+    for (; i < frees.size() && offset_in(frees[i]) == o; ++i) {
+      sum += points.weight[static_cast<std::size_t>(frees[i] & 0xffffffffu)];
+    }
+    while (h < p.arc_count && p.offset[h] < o) ++h;
+    if (sum != 0.0f && !(h < p.arc_count && p.offset[h] == o)) {
+      p.offset.push_back(o);
+      p.value.push_back(sum);
+    }
   }
   return p;
 }

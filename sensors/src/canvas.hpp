@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "gridloc/grids/radix_sort.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 
 namespace gridloc::detail {
@@ -136,18 +137,10 @@ class Canvas {
     return idx;
   }
 
-  /// Sorts non-negative ints by 8-bit digits, least significant first (a few passes over a
-  /// few hundred cells, where std::sort's comparisons cost more).
+  /// Sorts the (non-negative) cell indices.
   void radix_sort(std::vector<int>& v) {
-    scratch_.resize(v.size());
-    const unsigned top = static_cast<unsigned>(side_) * static_cast<unsigned>(side_);
-    for (unsigned shift = 0; shift < 32 && (top >> shift) > 0; shift += 8) {
-      std::size_t count[257] = {};
-      for (int x : v) ++count[((static_cast<unsigned>(x) >> shift) & 255u) + 1];
-      for (std::size_t b = 1; b < 257; ++b) count[b] += count[b - 1];
-      for (int x : v) scratch_[count[(static_cast<unsigned>(x) >> shift) & 255u]++] = x;
-      v.swap(scratch_);
-    }
+    const auto area = static_cast<std::uint64_t>(side_) * static_cast<std::uint64_t>(side_);
+    gridloc::radix_sort(v, scratch_, 0, bits_below(area));
   }
 
   double res_ = 0.1;

@@ -48,6 +48,11 @@ struct PlacedLocalGrid {
 
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 
+/// place(rasterize_points(points, theta, resolution), global) without the intermediate grid:
+/// the same offsets, values and order (tested equal), a few times cheaper. `points` must not
+/// reach beyond the padding.
+PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global);
+
 /// The correlation of a placed local grid with two grids seen from one origin: arc cells
 /// read `arc`, the others `all`; positives and negatives are summed apart, each in the local
 /// grid's order, then added. score() and the branch-and-bound bounds both sum this way, which
