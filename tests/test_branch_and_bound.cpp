@@ -820,7 +820,7 @@ TEST(SearchBranchAndBound, ExclusionAndIncumbentWithHeadingIntervals) {
     const std::optional<LatticePose> outside = best_outside(e, ex);
     for (int threads : {1, 2}) {
       BranchAndBoundOptions o;
-      o.exclude = ex;
+      o.exclude = {ex};
       o.heading_intervals = (c + threads) % 2 == 0 || threads == 1;
       o.threads = threads;
       const std::string what = s.what + " [exclusion, " + std::to_string(threads) + " threads]";
@@ -855,7 +855,7 @@ TEST(SearchBranchAndBound, ExclusionAndIncumbentWithHeadingIntervals) {
         if (!ex.contains(p.ix, p.iy, p.it)) candidates.push_back(p);
       }
       BranchAndBoundOptions o;
-      o.exclude = ex;
+      o.exclude = {ex};
       o.heading_intervals = true;
       o.incumbent = candidates[static_cast<std::size_t>(
           uniform_int(rng, 0, static_cast<int>(candidates.size()) - 1))];

@@ -343,6 +343,7 @@ TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
     CorrelationOptions exhaustive, bnb;
     exhaustive.strategy = SearchStrategy::Exhaustive;
     bnb.strategy = SearchStrategy::BranchAndBound;
+    exhaustive.hypotheses = bnb.hypotheses = 4;  // the top 4 distinct poses, exactly
     const CorrelationEstimator a(map, ring, exhaustive), b(map, ring, bnb);
     Rng rng(7);
     for (int t = 0; t < 6; ++t) {
@@ -358,6 +359,14 @@ TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
       EXPECT_EQ(ea.score, eb.score) << name << " " << t;
       EXPECT_EQ(ea.second_score, eb.second_score) << name << " " << t;
       EXPECT_EQ(ea.pose.x, eb.pose.x) << name << " " << t;
+      ASSERT_EQ(ea.alternatives.size(), 4u) << name << " " << t;
+      ASSERT_EQ(eb.alternatives.size(), 4u) << name << " " << t;
+      for (std::size_t k = 0; k < 4; ++k) {
+        EXPECT_EQ(ea.alternatives[k].score, eb.alternatives[k].score) << name << " " << t;
+        EXPECT_EQ(ea.alternatives[k].pose.x, eb.alternatives[k].pose.x) << name << " " << t;
+        EXPECT_EQ(ea.alternatives[k].pose.y, eb.alternatives[k].pose.y) << name << " " << t;
+        EXPECT_EQ(ea.alternatives[k].pose.theta, eb.alternatives[k].pose.theta) << name;
+      }
       EXPECT_LT(eb.stats.poses_scored, ea.stats.poses_scored) << name << " " << t;
     }
   }

@@ -312,7 +312,9 @@ class Search {
     long long cells = 0;
 
     void score_leaf(int it, int iy, int ix) {
-      if (search.opt_.exclude && search.opt_.exclude->contains(ix, iy, it)) return;
+      for (const Exclusion& zone : search.opt_.exclude) {
+        if (zone.contains(ix, iy, it)) return;
+      }
       const PlacedLocalGrid& local = search.grids_.placed(it);
       const LatticePose c{ix, iy, it, score(search.g_, local, ix, iy)};
       cells += static_cast<long long>(local.value.size());
@@ -336,10 +338,13 @@ class Search {
       }
       const int it1 = std::min(it + (1 << a) - 1, lat.headings - 1);
       const int side = 1 << h;
-      if (search.opt_.exclude &&
-          search.opt_.exclude->contains_block(it, it1, ix, iy, std::min(ix + side - 1, lat.x1),
-                                              std::min(iy + side - 1, lat.y1))) {
-        return;
+      // A node inside one zone holds no candidate (one covered only by several zones
+      // together is kept: only less pruning).
+      for (const Exclusion& zone : search.opt_.exclude) {
+        if (zone.contains_block(it, it1, ix, iy, std::min(ix + side - 1, lat.x1),
+                                std::min(iy + side - 1, lat.y1))) {
+          return;
+        }
       }
       Node n{0.0, it, iy, ix, h, a};
       if (a == 0) {
@@ -565,7 +570,7 @@ SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& 
   const HeadingGrids grids(lattice, finest);
   grids.make_all();  // in parallel with finest.threads; the search itself runs on one
   BranchAndBoundOptions options;
-  options.exclude = exclude;
+  if (exclude) options.exclude.push_back(*exclude);
   return search_branch_and_bound(lattice, grids, pyramid, options);
 }
 

@@ -79,6 +79,10 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.levels));
   }
   if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
+  if (options_.hypotheses < 1 || options_.hypotheses > 100) {
+    throw Error("correlation options: hypotheses must be in [1, 100], got " +
+                std::to_string(options_.hypotheses));
+  }
   validate(options_.scan);
   if (!(options_.budget_ms >= 0.0) || !std::isfinite(options_.budget_ms)) {
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
@@ -239,36 +243,46 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
           .mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
   std::vector<LatticePose> peaks;
+  const auto wanted = static_cast<std::size_t>(options_.hypotheses);
   if (options_.strategy == SearchStrategy::BranchAndBound) {
-    // Branch and bound scores few poses: find the best distinct pose exactly, by a second
-    // search that leaves out the winner's neighbourhood, starting from the best pose outside
-    // it that the first search scored.
-    bnb.exclude = neighbourhood(r.best, res, window.step_theta, options_);
-    for (const auto& p : r.scored) {
-      if (bnb.exclude->contains(p.ix, p.iy, p.it)) continue;
-      if (!bnb.incumbent || p.score > bnb.incumbent->score ||
-          (p.score == bnb.incumbent->score &&
-           std::tie(p.it, p.iy, p.ix) <
-               std::tie(bnb.incumbent->it, bnb.incumbent->iy, bnb.incumbent->ix))) {
-        bnb.incumbent = p;
-      }
-    }
+    // Branch and bound scores few poses: find each next distinct pose exactly, by a search
+    // that leaves out the neighbourhoods of those found, starting from the best pose outside
+    // them that an earlier search scored (the greedy order of distinct_peaks).
     peaks.push_back(r.best);
-    SearchResult second;
-    second.best = bnb.incumbent.value_or(LatticePose{});
-    if (options_.budget_ms > 0.0) {  // the second search gets what the first left of the budget
-      bnb.budget_ms = options_.budget_ms - std::chrono::duration<double, std::milli>(
-                                               std::chrono::steady_clock::now() - start)
-                                               .count();
+    std::vector<LatticePose> seen = r.scored;
+    while (peaks.size() < wanted) {
+      bnb.exclude.push_back(neighbourhood(peaks.back(), res, window.step_theta, options_));
+      bnb.incumbent.reset();
+      for (const auto& p : seen) {
+        const bool excluded =
+            std::any_of(bnb.exclude.begin(), bnb.exclude.end(),
+                        [&](const Exclusion& z) { return z.contains(p.ix, p.iy, p.it); });
+        if (excluded) continue;
+        if (!bnb.incumbent || p.score > bnb.incumbent->score ||
+            (p.score == bnb.incumbent->score &&
+             std::tie(p.it, p.iy, p.ix) <
+                 std::tie(bnb.incumbent->it, bnb.incumbent->iy, bnb.incumbent->ix))) {
+          bnb.incumbent = p;
+        }
+      }
+      SearchResult next;
+      next.best = bnb.incumbent.value_or(LatticePose{});
+      if (options_.budget_ms > 0.0) {  // later searches get what is left of the budget
+        bnb.budget_ms = options_.budget_ms - std::chrono::duration<double, std::milli>(
+                                                 std::chrono::steady_clock::now() - start)
+                                                 .count();
+      }
+      if (options_.second_peak && (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
+        next = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
+        seen.insert(seen.end(), next.scored.begin(), next.scored.end());
+        r.poses_scored += next.poses_scored;
+        r.cells_scored += next.cells_scored;
+      }
+      if (!bnb.incumbent && next.poses_scored == 0) break;  // every other pose is excluded
+      peaks.push_back(next.best);
     }
-    if (options_.second_peak && (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
-      second = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
-    }
-    if (bnb.incumbent || second.poses_scored > 0) peaks.push_back(second.best);
-    r.poses_scored += second.poses_scored;
-    r.cells_scored += second.cells_scored;
   } else {
-    peaks = distinct_peaks(r.scored, res, window.step_theta, options_, 5);
+    peaks = distinct_peaks(r.scored, res, window.step_theta, options_, wanted);
   }
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
   e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;

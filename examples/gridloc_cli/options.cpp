@@ -108,6 +108,10 @@ void SearchArgs::add_to(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_flag("--heading-intervals", heading_intervals,
                 "bnb with a scan: bound intervals of headings too (exact; see README)");
+  cmd->add_option("--hypotheses", hypotheses,
+                  "distinct poses to report in alternatives, the winner included (found "
+                  "exactly by bnb, one search each)")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -126,6 +130,10 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   o.budget_ms = budget_ms;
   o.heading_intervals = heading_intervals;
   o.second_peak = !no_second_peak;
+  if (hypotheses < 1 || hypotheses > 100) {
+    throw Error("--hypotheses must lie in [1, 100], got " + std::to_string(hypotheses));
+  }
+  o.hypotheses = hypotheses;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

@@ -32,9 +32,10 @@ struct SearchArgs {
   double budget_ms = 0.0;
   bool heading_intervals = false;
   bool no_second_peak = false;
+  int hypotheses = CorrelationOptions{}.hypotheses;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
-  /// --budget-ms, --heading-intervals and --no-second-peak.
+  /// --budget-ms, --heading-intervals, --no-second-peak and --hypotheses.
   void add_to(CLI::App* cmd);
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;

@@ -130,10 +130,11 @@ class HeadingGrids {
 };
 
 struct BranchAndBoundOptions {
-  /// Poses never candidates: the result is the exhaustive best among the others.
-  std::optional<Exclusion> exclude;
+  /// Poses never candidates (those in any of the zones): the result is the exhaustive best
+  /// among the others. Zones found one after another give the top distinct hypotheses.
+  std::vector<Exclusion> exclude;
   /// A lattice pose with its exact score, known before the search (e.g. the best pose outside
-  /// `exclude` that an earlier search scored): prunes from the start. It must satisfy
+  /// `exclude` that an earlier search scored): prunes from the start. It must lie outside
   /// `exclude`; the result is it when nothing beats it.
   std::optional<LatticePose> incumbent;
   /// Anytime search: stop after about this many milliseconds (0: no limit) and return the

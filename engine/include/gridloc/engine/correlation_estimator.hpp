@@ -38,10 +38,14 @@ struct CorrelationOptions {
   /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
   /// reach; set it to a laser's max range to localize scans.
   double reach_m = 0.0;
-  /// Branch and bound: find the best pose distinct from the winner exactly, by a second
-  /// search (it can cost more than the first: distinct poses score lower, so less is pruned).
-  /// Off: the second score is the best distinct pose the first search happened to score, a
-  /// lower bound, so `confidence` is then optimistic (0 when it scored none).
+  /// Distinct poses reported in Estimate::alternatives, the winner included (>= 1): each next
+  /// one is the best pose outside the neighbourhoods (distinct_xy, distinct_theta) of those
+  /// before it. The second gives second_score and the confidence.
+  int hypotheses = 2;
+  /// Branch and bound: find the hypotheses after the winner exactly, one search each (each
+  /// can cost more than the first: distinct poses score lower, so less is pruned). Off: they
+  /// are the best distinct poses the first search happened to score, lower bounds, so
+  /// `confidence` is then optimistic (0 when it scored none).
   bool second_peak = true;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
