@@ -39,12 +39,6 @@ bool index_less(int it, int iy, int ix, const LatticePose& b) {
   return std::tie(it, iy, ix) < std::tie(b.it, b.iy, b.ix);
 }
 
-/// Better pose = higher score, then lower index (search_exhaustive's order).
-bool better(const LatticePose& a, const LatticePose& b) {
-  if (a.score != b.score) return a.score > b.score;
-  return index_less(a.it, a.iy, a.ix, b);
-}
-
 /// Visit order: higher bound first, then lower first pose.
 bool visit_before(const Node& a, const Node& b) {
   if (a.bound != b.bound) return a.bound > b.bound;

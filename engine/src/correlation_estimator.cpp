@@ -202,7 +202,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
          },
          options_.threads});
   }
-  if (points) levels.front().points = points_ptr;  // rigid points: heading-interval bounds
+  // Rigid points: branch and bound places them directly and can bound heading intervals.
+  if (points) levels.front().points = points_ptr;
   SearchResult r;
   std::optional<HeadingGrids> grids;  // branch and bound: shared by its two searches
   BranchAndBoundOptions bnb;
@@ -257,13 +258,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
         const bool excluded =
             std::any_of(bnb.exclude.begin(), bnb.exclude.end(),
                         [&](const Exclusion& z) { return z.contains(p.ix, p.iy, p.it); });
-        if (excluded) continue;
-        if (!bnb.incumbent || p.score > bnb.incumbent->score ||
-            (p.score == bnb.incumbent->score &&
-             std::tie(p.it, p.iy, p.ix) <
-                 std::tie(bnb.incumbent->it, bnb.incumbent->iy, bnb.incumbent->ix))) {
-          bnb.incumbent = p;
-        }
+        if (!excluded && (!bnb.incumbent || better(p, *bnb.incumbent))) bnb.incumbent = p;
       }
       SearchResult next;
       next.best = bnb.incumbent.value_or(LatticePose{});

@@ -14,11 +14,6 @@ namespace {
 bool index_less(const LatticePose& a, const LatticePose& b) {
   return std::tie(a.it, a.iy, a.ix) < std::tie(b.it, b.iy, b.ix);
 }
-/// Better = higher score, then lower index.
-bool better(const LatticePose& a, const LatticePose& b) {
-  if (a.score != b.score) return a.score > b.score;
-  return index_less(a, b);
-}
 
 /// Scores `candidates` (sorted by index) on one level, building each heading's grid once.
 void score_all(std::vector<LatticePose>& candidates, const Lattice& lattice,

@@ -3,6 +3,7 @@
 /// grid placed on a global grid, over a lattice of cells x headings.
 #include <cstddef>
 #include <functional>
+#include <tuple>
 #include <vector>
 
 #include "gridloc/grids/grid.hpp"
@@ -87,6 +88,13 @@ struct LatticePose {
   int it = 0;
   double score = 0.0;
 };
+
+/// The order every search ranks poses in: higher score first, ties to the lower index in
+/// (it, iy, ix) order.
+inline bool better(const LatticePose& a, const LatticePose& b) {
+  if (a.score != b.score) return a.score > b.score;
+  return std::tie(a.it, a.iy, a.ix) < std::tie(b.it, b.iy, b.ix);
+}
 
 /// The translation x heading lattice of one search, in finest-level cells.
 struct Lattice {
