@@ -263,35 +263,41 @@ class Search {
         ++a_top;
       }
     }
-    {
-      Worker w(*this);
-      const int side = 1 << top;
-      for (int it = 0; it < lat_.headings; it += 1 << a_top) {
-        for (int iy = lat_.y0; iy <= lat_.y1; iy += side) {
-          for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
+    // Each thread makes the top nodes of its share of the headings (building their grids in
+    // parallel) into its own best-first heap, then searches, sharing the incumbent and
+    // stealing from the others' heaps when its own runs dry.
+    const auto threads = static_cast<std::size_t>(std::max(1, opt_.threads));
+    heaps_.assign(threads, {});
+    for (std::size_t t = 0; t < threads; ++t) heap_mu_.push_back(std::make_unique<std::mutex>());
+    roots_pending_ = static_cast<int>(threads);
+    const int stride = 1 << a_top;
+    auto run_thread = [this, top, a_top, stride, threads](std::size_t t) {
+      try {
+        Worker w(*this);
+        const int side = 1 << top;
+        for (int it = static_cast<int>(t) * stride; it < lat_.headings;
+             it += static_cast<int>(threads) * stride) {
+          for (int iy = lat_.y0; iy <= lat_.y1; iy += side) {
+            for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
+          }
         }
+        heaps_[t] = std::move(w.children);
+        std::make_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+        w.merge();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mu_);
+        if (!error_) error_ = std::current_exception();
+        stopped_ = true;
       }
-      // Each thread searches its own best-first heap, sharing only the incumbent: the roots
-      // are dealt out in visit order, so every thread gets a share of the promising ones.
-      const int threads = std::max(1, opt_.threads);
-      std::sort(w.children.begin(), w.children.end(), visit_before);
-      heaps_.assign(static_cast<std::size_t>(threads), {});
-      for (std::size_t k = 0; k < w.children.size(); ++k) {
-        heaps_[k % heaps_.size()].push_back(w.children[k]);
-      }
-      for (auto& heap : heaps_) std::make_heap(heap.begin(), heap.end(), heap_less);
-      w.merge();
-    }
-    if (heaps_.size() == 1) {
-      work(heaps_.front());
-    } else {
-      std::vector<std::thread> pool;
-      for (std::size_t t = 1; t < heaps_.size(); ++t) {
-        pool.emplace_back([this, t] { work(heaps_[t]); });
-      }
-      work(heaps_.front());
-      for (auto& t : pool) t.join();
-    }
+      // Every heap must hold its top nodes before anyone may conclude the search is over.
+      --roots_pending_;
+      while (roots_pending_.load() > 0) std::this_thread::yield();
+      work(t);
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run_thread, t);
+    run_thread(0);
+    for (auto& t : pool) t.join();
     if (error_) std::rethrow_exception(error_);
     return finish(stopped_.load());
   }
@@ -458,26 +464,50 @@ class Search {
 
   static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
 
-  /// One thread's loop over its own heap: pop the best node while it could still beat the
-  /// shared incumbent, expand it, keep its promising children.
-  void work(std::vector<Node>& heap) {
+  /// Takes the best promising node of thread t's heap, or else steals one from another
+  /// heap (so a thread whose share ran out helps the others). Counts it as in work.
+  bool take(std::size_t t, Node& n) {
+    for (std::size_t i = 0; i < heaps_.size(); ++i) {
+      const std::size_t v = (t + i) % heaps_.size();
+      std::lock_guard<std::mutex> lock(*heap_mu_[v]);
+      std::vector<Node>& heap = heaps_[v];
+      if (heap.empty() || !promising_fast(heap.front())) continue;
+      std::pop_heap(heap.begin(), heap.end(), heap_less);
+      n = heap.back();
+      heap.pop_back();
+      ++active_;
+      return true;
+    }
+    return false;
+  }
+
+  /// Thread t's loop: take a node, expand it, keep its promising children in heap t. A thread
+  /// stops when no heap holds a promising node and no node is being expanded (a thread that
+  /// pushes children always looks again, so no node is left behind).
+  void work(std::size_t t) {
     Worker w(*this);
     try {
-      while (!heap.empty() && !stopped_.load(std::memory_order_relaxed)) {
+      while (!stopped_.load(std::memory_order_relaxed)) {
         if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
           stopped_ = true;
           break;
         }
-        if (!promising_fast(heap.front())) break;  // nothing left here can win
-        std::pop_heap(heap.begin(), heap.end(), heap_less);
-        const Node n = heap.back();
-        heap.pop_back();
+        Node n;
+        if (!take(t, n)) {
+          if (active_.load() == 0) break;
+          std::this_thread::yield();
+          continue;
+        }
         w.expand(n);
-        for (const Node& c : w.children) {
-          heap.push_back(c);
-          std::push_heap(heap.begin(), heap.end(), heap_less);
+        {
+          std::lock_guard<std::mutex> lock(*heap_mu_[t]);
+          for (const Node& c : w.children) {
+            heaps_[t].push_back(c);
+            std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+          }
         }
         w.children.clear();
+        --active_;
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(mu_);
@@ -531,7 +561,10 @@ class Search {
   std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
 
-  std::vector<std::vector<Node>> heaps_;  ///< one best-first heap per thread
+  std::vector<std::vector<Node>> heaps_;              ///< one best-first heap per thread ...
+  std::vector<std::unique_ptr<std::mutex>> heap_mu_;  ///< ... each with its lock
+  std::atomic<int> active_{0};                        ///< nodes being expanded
+  std::atomic<int> roots_pending_{0};                 ///< threads still making top nodes
 
   mutable std::mutex mu_;  // guards the incumbent, the error and the result
   LatticePose best_;
