@@ -145,8 +145,9 @@ struct BranchAndBoundOptions {
   /// either way; on the apartment peer case it prunes more headings unopened but its bounds
   /// are looser, so it was slower than one node per heading (bench/RESULTS.md).
   bool heading_intervals = false;
-  /// Threads, each searching its own best-first heap of a share of the top-level nodes and
-  /// pruning with the shared incumbent. The result does not depend on it (exact); the
+  /// Threads, each making the top-level nodes of its share of the headings and searching them
+  /// best first in its own heap, pruning with the shared incumbent and stealing from the
+  /// others' heaps when its own runs dry. The result does not depend on it (exact); the
   /// counters and `scored` do.
   int threads = 1;
 };
@@ -172,9 +173,9 @@ struct BranchAndBoundOptions {
 /// stays within half that block. Intervals are split while their widening is at least half the
 /// block, blocks otherwise.
 ///
-/// Best first over all open nodes (highest bound, then lowest first pose); a node is dropped
+/// Best first (highest bound, then lowest first pose; one heap per thread); a node is dropped
 /// when its bound is below the best score so far, or equal to it while it holds no pose of
-/// lower index; the search ends when the best open node is dropped. Result: `scored` holds
+/// lower index; the search ends when no heap's best node can win. Result: `scored` holds
 /// only the leaf poses scored exactly (a partial score volume); poses_scored counts them;
 /// cells_scored counts local cells or points multiplied by leaf scores and by bounds alike.
 /// An empty result (every pose excluded, no incumbent) has poses_scored == 0.
