@@ -30,9 +30,9 @@ void validate(const RangeScan& scan);
 RangeScan load_scan_csv(const std::string& path, double max_range);
 
 /// Which cells of a beam the local grid marks. Every model marks a beam's end cell +1 (a cell
-/// hit by several beams stays +1; end cells beat free cells) and gives the free part of a beam
-/// a total of -1 (free values of several beams add); a beam without return is free up to the
-/// max range.
+/// hit by several beams stays +1; end cells beat free cells); Rays and Samples also give the
+/// free part of a beam a total of -1 (free values of several beams add), a beam without
+/// return being free up to the max range.
 enum class ScanModel {
   /// The n cells a beam crosses before its end, -1/n each: the complete ray model.
   Rays,
@@ -86,8 +86,8 @@ inline Eigen::Vector2d point_position(const ScanPoints& p, std::size_t k, double
 }
 
 /// The cell (from the robot's cell) of point k, the robot centre lying (cx, cy) cells from
-/// its cell's centre: the one definition rasterize_points and the heading-interval bounds of
-/// branch and bound share.
+/// its cell's centre: the one rounding rule rasterize_points, place_points and the
+/// heading-interval bounds of branch and bound share.
 inline Eigen::Vector2i point_cell(const ScanPoints& p, std::size_t k, double cos_t, double sin_t,
                                   double inv_res, double cx = 0.0, double cy = 0.0) {
   const Eigen::Vector2d u = point_position(p, k, cos_t, sin_t, inv_res);
