@@ -190,6 +190,8 @@ TEST_F(Cli, BadSearchOptionsAreNamed) {
   // room_rect is 7 x 5.5 m with its walls: a +-50 m window is larger than the map.
   expect_cli_error(run_cli(dir, base + " --window-xy 50"), "larger than the map");
   expect_cli_error(run_cli(dir, base + " --budget-ms -1"), "--budget-ms");
+  expect_cli_error(run_cli(dir, base + " --budget-ms 5 --strategy multires"),
+                   "--budget-ms needs --strategy bnb");
   expect_cli_error(run_cli(dir, base + " --scan-model beams"), "--scan-model");
   expect_cli_error(run_cli(dir, base + " --free-samples 0"), "--free-samples");
 }

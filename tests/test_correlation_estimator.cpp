@@ -286,6 +286,14 @@ TEST_F(Estimator, BadOptions) {
   o.keep = 0;
   test::expect_error([&] { CorrelationEstimator(map("room_rect"), ring(), o); }, {"keep"});
   test::expect_error([&] { CorrelationEstimator(OccupancyMap{}, ring(), {}); }, {"empty"});
+  CorrelationOptions hurried = options(SearchStrategy::Multires);
+  hurried.budget_ms = 5.0;
+  test::expect_error([&] { CorrelationEstimator(map("room_rect"), ring(), hurried); },
+                     {"budget_ms", "branch-and-bound"});
+  CorrelationOptions intervals = options(SearchStrategy::Exhaustive);
+  intervals.heading_intervals = true;
+  test::expect_error([&] { CorrelationEstimator(map("room_rect"), ring(), intervals); },
+                     {"heading_intervals", "branch-and-bound"});
   SonarRing empty;
   empty.name = "nothing";
   test::expect_error([&] { CorrelationEstimator(map("room_rect"), empty, {}); },

@@ -88,6 +88,13 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
                 std::to_string(options_.budget_ms));
   }
+  // Options only branch and bound can honour are errors elsewhere, not silently ignored.
+  if (options_.strategy != SearchStrategy::BranchAndBound &&
+      (options_.budget_ms > 0.0 || options_.heading_intervals)) {
+    throw Error(std::string("correlation options: ") +
+                (options_.budget_ms > 0.0 ? "budget_ms" : "heading_intervals") +
+                " needs the branch-and-bound strategy");
+  }
   if (options_.threads < 1 || options_.threads > 256) {
     throw Error("correlation options: threads must be in [1, 256], got " +
                 std::to_string(options_.threads));

@@ -127,6 +127,10 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   if (!(budget_ms >= 0.0) || !std::isfinite(budget_ms)) {
     throw Error("--budget-ms must be a finite number >= 0, got " + std::to_string(budget_ms));
   }
+  if (o.strategy != SearchStrategy::BranchAndBound && (budget_ms > 0.0 || heading_intervals)) {
+    throw Error(std::string(budget_ms > 0.0 ? "--budget-ms" : "--heading-intervals") +
+                " needs --strategy bnb");
+  }
   o.budget_ms = budget_ms;
   o.heading_intervals = heading_intervals;
   o.second_peak = !no_second_peak;
