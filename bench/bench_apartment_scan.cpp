@@ -127,18 +127,6 @@ const Inputs& inputs() {
   return in;
 }
 
-std::string model_name(ScanModel m) {
-  switch (m) {
-    case ScanModel::Hits:
-      return "hits";
-    case ScanModel::Samples:
-      return "samples";
-    case ScanModel::Rays:
-      return "rays";
-  }
-  return "unknown";
-}
-
 /// What one BM_ApartmentScan row runs.
 struct Config {
   SearchStrategy strategy = SearchStrategy::BranchAndBound;
@@ -150,7 +138,7 @@ struct Config {
   auto key() const { return std::tuple{strategy, model, threads, intervals, second_peak}; }
   /// <strategy>/<model>[/threads:2][/intervals][/no_second_peak]
   std::string name() const {
-    std::string n = strategy_name(strategy) + "/" + model_name(model);
+    std::string n = to_string(strategy) + "/" + to_string(model);
     if (threads != 1) n += "/threads:" + std::to_string(threads);
     if (intervals) n += "/intervals";
     if (!second_peak) n += "/no_second_peak";
@@ -313,12 +301,12 @@ std::vector<Config> configs(const Case& c) {
 
 const bool registered = [] {
   for (SearchStrategy s : {SearchStrategy::Multires, SearchStrategy::BranchAndBound}) {
-    benchmark::RegisterBenchmark(("BM_ApartmentPrecompute/" + strategy_name(s)).c_str(),
+    benchmark::RegisterBenchmark(("BM_ApartmentPrecompute/" + to_string(s)).c_str(),
                                  BM_ApartmentPrecompute, s)
         ->Unit(benchmark::kMillisecond);
   }
   for (ScanModel m : {ScanModel::Hits, ScanModel::Samples, ScanModel::Rays}) {
-    auto* b = benchmark::RegisterBenchmark(("BM_ApartmentScanGrid/" + model_name(m)).c_str(),
+    auto* b = benchmark::RegisterBenchmark(("BM_ApartmentScanGrid/" + to_string(m)).c_str(),
                                            BM_ApartmentScanGrid, m)
                   ->ArgName("res_cm")
                   ->Arg(5)

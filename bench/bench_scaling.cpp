@@ -248,7 +248,7 @@ std::map<std::string, double>& series_ms() {
 benchmark::internal::Benchmark* add(const std::string& family, SearchStrategy s,
                                     const std::string& arg, std::function<const Case&()> make,
                                     const std::string& series = "") {
-  const std::string name = family + "/" + strategy_name(s) + "/" + arg;
+  const std::string name = family + "/" + to_string(s) + "/" + arg;
   return benchmark::RegisterBenchmark(
              name.c_str(),
              [=](benchmark::State& st) {
@@ -275,7 +275,7 @@ const bool registered = [] {
       add(
           "BM_ScalingBeams", s, "beams:" + std::to_string(beams),
           [=]() -> const Case& { return windowed_case(beams, 50, 1); },
-          "BM_ScalingBeams/" + strategy_name(s));
+          "BM_ScalingBeams/" + to_string(s));
     }
   }
   for (SearchStrategy s : kAll) {
@@ -285,7 +285,7 @@ const bool registered = [] {
       add(
           "BM_ScalingResolution", s, "res_mm:" + std::to_string(res_mm),
           [=]() -> const Case& { return windowed_case(360, res_mm, 1); },
-          "BM_ScalingResolution/" + strategy_name(s));
+          "BM_ScalingResolution/" + to_string(s));
     }
   }
   // Global searches at 0.05 m take 1 to 23 s per call: full mode only.
@@ -298,7 +298,7 @@ const bool registered = [] {
             "BM_ScalingMapSize", s,
             "res_mm:" + std::to_string(res_mm) + "/area:" + std::to_string(area),
             [=]() -> const Case& { return global_case(area, res_mm); },
-            "BM_ScalingMapSize/" + strategy_name(s) + "/" + std::to_string(res_mm));
+            "BM_ScalingMapSize/" + to_string(s) + "/" + std::to_string(res_mm));
       }
     }
   }

@@ -98,18 +98,6 @@ const CorrelationEstimator& estimator(const std::string& name, SearchStrategy st
   return *slot;
 }
 
-std::string strategy_name(SearchStrategy strategy) {
-  switch (strategy) {
-    case SearchStrategy::Multires:
-      return "multires";
-    case SearchStrategy::Exhaustive:
-      return "exhaustive";
-    case SearchStrategy::BranchAndBound:
-      return "bnb";
-  }
-  return "unknown";
-}
-
 namespace {
 
 struct Accuracy {

@@ -39,9 +39,6 @@ SearchWindow window_for(const Trial& trial, const OccupancyMap& map, double half
 const CorrelationEstimator& estimator(const std::string& name, SearchStrategy strategy,
                                       int threads = 1);
 
-/// "multires", "exhaustive" or "bnb" (as the CLI's --strategy).
-std::string strategy_name(SearchStrategy strategy);
-
 /// Times one localization per iteration, cycling through trials(name); sets items (one
 /// localization each), the rates poses_per_s and cells_per_s, median_ms (median of the
 /// estimator's own elapsed_ms over the iterations), and, from one untimed pass over all 16

@@ -30,7 +30,7 @@ const bool registered = [] {
   for (const char* map : {"room_rect", "room_l", "room_furnished"}) {
     const std::string m(map);
     for (SearchStrategy s : kStrategies) {
-      const std::string name = "BM_SonarSeedWindow/" + m + "/" + strategy_name(s);
+      const std::string name = "BM_SonarSeedWindow/" + m + "/" + to_string(s);
       if (m == kThreadsMap) {
         benchmark::RegisterBenchmark(name.c_str(), BM_SonarSeedWindowThreads, m, s)
             ->ArgName("threads")

@@ -18,7 +18,7 @@ void BM_WindowScaling(benchmark::State& state, SearchStrategy s) {
 const bool registered = [] {
   for (SearchStrategy s :
        {SearchStrategy::Multires, SearchStrategy::Exhaustive, SearchStrategy::BranchAndBound}) {
-    const std::string name = "BM_WindowScaling/room_l/" + strategy_name(s);
+    const std::string name = "BM_WindowScaling/room_l/" + to_string(s);
     benchmark::RegisterBenchmark(name.c_str(), BM_WindowScaling, s)
         ->ArgName("half_cm")
         ->Arg(40)

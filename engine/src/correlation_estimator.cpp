@@ -47,6 +47,18 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
 
 }  // namespace
 
+std::string to_string(SearchStrategy strategy) {
+  switch (strategy) {
+    case SearchStrategy::BranchAndBound:
+      return "bnb";
+    case SearchStrategy::Exhaustive:
+      return "exhaustive";
+    case SearchStrategy::Multires:
+      return "multires";
+  }
+  return "unknown";
+}
+
 void validate(const SearchWindow& w) {
   auto bad = [](const std::string& field, double v, const std::string& rule) {
     std::ostringstream m;

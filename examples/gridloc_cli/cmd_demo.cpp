@@ -64,7 +64,7 @@ void run(const DemoArgs& a) {
   std::printf("score     %.3f (normalized %.3f), confidence %.2f\n", e.score, e.normalized_score,
               e.confidence);
   const bool multires = estimator.options().strategy == SearchStrategy::Multires;
-  std::printf("time      %.2f ms (%s, %lld poses scored%s; window +-%.2f m, +-%.0f deg)\n",
+  std::printf("time      %.2f ms (%s search, %lld poses scored%s; window +-%.2f m, +-%.0f deg)\n",
               e.stats.elapsed_ms, to_string(estimator.options().strategy).c_str(),
               e.stats.poses_scored,
               multires ? "" : (e.stats.proven_optimal ? ", proven optimal" : ", not proven"),

@@ -43,22 +43,11 @@ GlobalModel parse_global(const std::string& s) {
 }
 
 SearchStrategy parse_strategy(const std::string& s) {
-  if (s == "multires") return SearchStrategy::Multires;
-  if (s == "exhaustive") return SearchStrategy::Exhaustive;
-  if (s == "bnb") return SearchStrategy::BranchAndBound;
-  throw Error("--strategy must be multires, exhaustive or bnb, not '" + s + "'");
-}
-
-std::string to_string(SearchStrategy s) {
-  switch (s) {
-    case SearchStrategy::BranchAndBound:
-      return "branch and bound";
-    case SearchStrategy::Exhaustive:
-      return "exhaustive";
-    case SearchStrategy::Multires:
-      return "multiresolution";
+  for (SearchStrategy v :
+       {SearchStrategy::BranchAndBound, SearchStrategy::Exhaustive, SearchStrategy::Multires}) {
+    if (s == to_string(v)) return v;
   }
-  return "?";
+  throw Error("--strategy must be bnb, exhaustive or multires, not '" + s + "'");
 }
 
 ArcRule parse_arc_rule(const std::string& s) {
@@ -72,10 +61,10 @@ std::string to_string(ArcRule r) {
 }
 
 ScanModel parse_scan_model(const std::string& s) {
-  if (s == "samples") return ScanModel::Samples;
-  if (s == "rays") return ScanModel::Rays;
-  if (s == "hits") return ScanModel::Hits;
-  throw Error("--scan-model must be samples, rays or hits, not '" + s + "'");
+  for (ScanModel v : {ScanModel::Hits, ScanModel::Samples, ScanModel::Rays}) {
+    if (s == to_string(v)) return v;
+  }
+  throw Error("--scan-model must be hits, samples or rays, not '" + s + "'");
 }
 
 double check_arc_depth(double cells) {

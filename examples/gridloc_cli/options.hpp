@@ -13,8 +13,6 @@ Pose2 parse_pose(const std::string& text, const std::string& what);
 LocalModel parse_local(const std::string& s);
 GlobalModel parse_global(const std::string& s);
 SearchStrategy parse_strategy(const std::string& s);
-/// "branch and bound", "exhaustive" or "multiresolution".
-std::string to_string(SearchStrategy s);
 ArcRule parse_arc_rule(const std::string& s);
 ScanModel parse_scan_model(const std::string& s);
 std::string to_string(ArcRule r);

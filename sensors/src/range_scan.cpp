@@ -98,6 +98,18 @@ RangeScan load_scan_csv(const std::string& path, double max_range) {
   return scan;
 }
 
+std::string to_string(ScanModel model) {
+  switch (model) {
+    case ScanModel::Rays:
+      return "rays";
+    case ScanModel::Samples:
+      return "samples";
+    case ScanModel::Hits:
+      return "hits";
+  }
+  return "unknown";
+}
+
 void validate(const ScanModelOptions& options) {
   if (options.model == ScanModel::Samples &&
       (options.free_samples < 1 || options.free_samples > 1000)) {

@@ -1,6 +1,7 @@
 #pragma once
 /// The correlation estimator (seed 001): oriented sonar local grids matched against a
 /// contour-thinned global grid by a multiresolution translation x rotation search.
+#include <string>
 #include <vector>
 
 #include "gridloc/engine/branch_and_bound.hpp"
@@ -89,6 +90,10 @@ class CorrelationEstimator final : public Estimator {
   std::vector<PaddedGrid> levels_;
   BoundPyramid pyramid_;  ///< of levels_[0], built for SearchStrategy::BranchAndBound
 };
+
+/// The strategy's short name, as the command line and benchmarks spell it: "bnb",
+/// "exhaustive" or "multires".
+std::string to_string(SearchStrategy strategy);
 
 /// Checks a window; throws gridloc::Error naming the field.
 void validate(const SearchWindow& window);

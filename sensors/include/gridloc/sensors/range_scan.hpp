@@ -51,6 +51,9 @@ struct ScanModelOptions {
   int free_samples = 4;  ///< per beam, for ScanModel::Samples (>= 1)
 };
 
+/// The model's name, as the command line and benchmarks spell it: "rays", "samples", "hits".
+std::string to_string(ScanModel model);
+
 /// Checks options; throws gridloc::Error naming the field.
 void validate(const ScanModelOptions& options);
 
