@@ -240,7 +240,7 @@ TEST_F(Cli, ScanModelsAndMultiresReportWhatTheyProve) {
     EXPECT_TRUE(j.at("stats").at("proven_optimal").get<bool>()) << model;
   }
   const CliRun m = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
-                                    " --prior 3.35,2.0,0.1 --strategy multires");
+                                    " --prior 3.35,2.0,0.1 --strategy multires --json");
   ASSERT_EQ(m.status, 0) << m.err;
   const auto j = nlohmann::json::parse(m.out);
   EXPECT_FALSE(j.at("stats").at("proven_optimal").get<bool>());  // a heuristic proves nothing
