@@ -102,12 +102,7 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
                        [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; });
   };
   if (is_ternary(arc) && is_ternary(global.grid)) {  // pooling keeps values: levels are too
-    auto to_int8 = [](const EvidenceGrid& g) {
-      std::vector<std::int8_t> out(g.cells.size());
-      std::transform(g.cells.begin(), g.cells.end(), out.begin(),
-                     [](float v) { return static_cast<std::int8_t>(v); });
-      return out;
-    };
+    auto to_int8 = [](const EvidenceGrid& g) { return to_int8_with_slack(g.cells); };
     p.arc_max8.push_back(to_int8(arc));
     p.grid_min8.push_back(to_int8(global.grid));
     for (int h = 1; h <= depth; ++h) {

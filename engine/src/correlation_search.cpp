@@ -1,11 +1,12 @@
 #include "gridloc/engine/correlation_search.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <tuple>
 
-#include "gridloc/grids/radix_sort.hpp"
+#include "gridloc/grids/error.hpp"
 
 namespace gridloc {
 namespace {
@@ -31,9 +32,7 @@ void score_all(std::vector<LatticePose>& candidates, const Lattice& lattice,
   for (std::ptrdiff_t g = 0; g < groups; ++g) {
     const auto begin = starts[static_cast<std::size_t>(g)],
                end = starts[static_cast<std::size_t>(g) + 1];
-    const PlacedLocalGrid placed =
-        place(level.make_local(lattice.theta(candidates[begin].it), Eigen::Vector2d::Zero()),
-              *level.global);
+    const PlacedLocalGrid placed = place_heading(level, lattice.theta(candidates[begin].it));
     for (std::size_t k = begin; k < end; ++k) {
       candidates[k].score = score(*level.global, placed, candidates[k].ix, candidates[k].iy);
     }
@@ -54,6 +53,10 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   GridGeometry g = grid.geometry;
   g.width += 2 * pad;
   g.height += 2 * pad;
+  if (static_cast<double>(g.width) * g.height >= 2147483648.0) {
+    throw Error("padded grid of " + std::to_string(g.width) + " x " + std::to_string(g.height) +
+                " cells is too large (2^31 cells or more)");
+  }
   p.grid = EvidenceGrid(g, 0.0f);
   for (int iy = 0; iy < grid.height(); ++iy) {
     std::copy(grid.row(iy), grid.row(iy) + grid.width(), p.grid.row(iy + pad) + pad);
@@ -62,7 +65,60 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   if (rule == ArcRule::Neutral) {
     for (float& v : p.arc_view) v = std::max(v, 0.0f);
   }
+  auto ternary = [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; };
+  if (std::all_of(p.grid.cells.begin(), p.grid.cells.end(), ternary)) {
+    p.arc_view8 = to_int8_with_slack(p.arc_view);
+    p.grid8 = to_int8_with_slack(p.grid.cells);
+  }
   return p;
+}
+
+std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells) {
+  std::vector<std::int8_t> out(cells.size() + kGatherSlack, 0);
+  std::transform(cells.begin(), cells.end(), out.begin(),
+                 [](float v) { return static_cast<std::int8_t>(v); });
+  return out;
+}
+
+namespace {
+
+/// Fractional bits a float needs to be whole (0 for integers and 0); more than any limit
+/// for NaN and infinities.
+int fraction_bits(float v) {
+  if (v == 0.0f) return 0;
+  if (!std::isfinite(v)) return 1000;
+  int exponent = 0;
+  const float mantissa = std::frexp(v, &exponent);  // |mantissa| in [0.5, 1)
+  // v = m * 2^(exponent - 24) with m the 24-bit integer mantissa.
+  const auto m = static_cast<std::uint32_t>(std::abs(std::ldexp(mantissa, 24)));
+  return std::max(0, 24 - exponent - std::countr_zero(m));
+}
+
+}  // namespace
+
+void set_fixed_point(PlacedLocalGrid& local) {
+  local.fixed.clear();
+  local.fixed_shift = -1;
+  // The fewest fractional bits that make every value whole (then multiplying by 2^shift is
+  // exact), and the magnitude limit 2^15.
+  constexpr int kMaxShift = 24;
+  constexpr double kLimit = 32768.0;
+  int shift = 0;
+  float largest = 0.0f;
+  float previous = 0.0f;  // values come in runs of equal ones: one look per run
+  for (float v : local.value) {
+    if (v == previous) continue;
+    previous = v;
+    shift = std::max(shift, fraction_bits(v));
+    largest = std::max(largest, std::abs(v));
+  }
+  if (shift > kMaxShift || std::ldexp(static_cast<double>(largest), shift) > kLimit) return;
+  local.fixed_shift = shift;
+  // In float: a power of 2 times a value <= 2^15 is exact, and the loop vectorizes.
+  const float scale = std::ldexp(1.0f, shift);
+  local.fixed.resize(local.value.size());
+  std::transform(local.value.begin(), local.value.end(), local.fixed.begin(),
+                 [&](float v) { return static_cast<std::int32_t>(v * scale); });
 }
 
 double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy,
@@ -87,7 +143,7 @@ PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
   PlacedLocalGrid p;
   p.offset.reserve(local.size());
   p.value.reserve(local.size());
-  const std::ptrdiff_t w = global.grid.width();
+  const int w = global.grid.width();  // |offset| < cells < 2^31 (pad_grid)
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t k = 0; k < local.size(); ++k) {
       if ((local.value[k] > 0.0f) != (pass == 0)) continue;
@@ -96,58 +152,111 @@ PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
     }
     if (pass == 0) p.arc_count = p.value.size();
   }
+  set_fixed_point(p);
   return p;
 }
+
+namespace {
+
+/// point_cell() of n points (centre 0) in one loop the compiler vectorizes: the same
+/// operations in the same order, so the same cells bit for bit (no FMA in either clone).
+__attribute__((target_clones("avx2", "default"))) void point_cells(const double* x, const double* y,
+                                                                   std::size_t n, double c,
+                                                                   double s, double inv, int* xs,
+                                                                   int* ys) {
+  for (std::size_t k = 0; k < n; ++k) {
+    xs[k] = floor_to_int((c * x[k] - s * y[k]) * inv + 0.5);
+    ys[k] = floor_to_int((s * x[k] + c * y[k]) * inv + 0.5);
+  }
+}
+
+}  // namespace
 
 PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global) {
   const double inv = 1.0 / global.grid.geometry.resolution;
   const double c = std::cos(theta), s = std::sin(theta);
-  const std::ptrdiff_t w = global.grid.width();
-  auto offset_of = [&](std::size_t k) {
-    const Eigen::Vector2i cell = point_cell(points, k, c, s, inv);
-    return static_cast<std::ptrdiff_t>(cell.y()) * w + cell.x();
+  const int w = global.grid.width();
+  // Pass 1, independent per point: the cells.
+  thread_local std::vector<int> xs, ys;
+  xs.resize(points.size());
+  ys.resize(points.size());
+  point_cells(points.x.data(), points.y.data(), points.size(), c, s, inv, xs.data(), ys.data());
+  // Pass 2: merge points per cell, finding a cell's entry through a small open-addressing
+  // table (kept in L1/L2, unlike a table over the grid): a slot whose epoch is this call's
+  // holds a cell offset and its entry. No clearing: each call has a new epoch.
+  struct Slot {
+    std::uint32_t epoch;
+    std::int32_t offset;
+    std::uint32_t entry;
   };
-  // Offsets sort as (dy, dx) do (|dx| <= pad < w / 2): place()'s order. A cell holding a beam
-  // end is +1; any other cell the float sum of its free samples in point order, as the
-  // canvas adds them.
-  // Keys: the offset made non-negative in the high 32 bits, the point index below, so that
-  // a stable sort on the high bits keeps point order within a cell.
-  const std::ptrdiff_t bias = static_cast<std::ptrdiff_t>(global.pad) * w + global.pad;
-  const int bits = bits_below(static_cast<std::uint64_t>(global.grid.cells.size()));
-  thread_local std::vector<std::uint64_t> keys, scratch;
-  auto sorted_keys = [&](std::size_t k0, std::size_t k1) -> std::vector<std::uint64_t>& {
-    keys.clear();
-    for (std::size_t k = k0; k < k1; ++k) {
-      keys.push_back(static_cast<std::uint64_t>(offset_of(k) + bias) << 32 | k);
-    }
-    radix_sort(keys, scratch, 32, bits);
-    return keys;
-  };
-  auto offset_in = [&](std::uint64_t key) { return static_cast<std::ptrdiff_t>(key >> 32) - bias; };
+  thread_local std::vector<Slot> table;
+  thread_local std::uint32_t epoch = 0;
+  std::size_t size = 64;
+  while (size < 4 * points.size()) size *= 2;
+  if (table.size() < size || ++epoch == 0) {
+    table.assign(std::max(size, table.size()), Slot{0, 0, 0});
+    epoch = 1;
+  }
+  const std::uint32_t now = epoch;
+  Slot* const slots = table.data();
+  const std::size_t mask = size - 1;
+  const int shift = 64 - std::countr_zero(size);
   PlacedLocalGrid p;
-  p.offset.reserve(points.size());
-  p.value.reserve(points.size());
-  for (std::uint64_t key : sorted_keys(0, points.hit_count)) {
-    const std::ptrdiff_t o = offset_in(key);
-    if (p.offset.empty() || p.offset.back() != o) p.offset.push_back(o);
+  p.offset.resize(points.size());
+  p.value.resize(points.size());
+  std::int32_t* const offset = p.offset.data();
+  float* const value = p.value.data();
+  std::uint32_t n = 0;  // entries so far
+  // The slot of point k's cell: its entry's, or the empty one where it goes (its epoch
+  // stays old until the caller makes it an entry).
+  auto slot_of = [&](std::size_t k) -> Slot& {
+    const std::int32_t o = ys[k] * w + xs[k];
+    // Fibonacci hashing: the top bits of the product spread nearby offsets apart.
+    std::size_t h = static_cast<std::size_t>(
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(o)) * 0x9E3779B97F4A7C15ull) >>
+        shift);
+    while (slots[h].epoch == now && slots[h].offset != o) h = (h + 1) & mask;
+    Slot& t = slots[h];
+    if (t.epoch != now) t.offset = o;
+    return t;
+  };
+  // A cell holding a beam end is +1; any other the float sum of its free samples in point
+  // order, as the canvas adds them; a sum of 0 is no cell.
+  for (std::size_t k = 0; k < points.hit_count; ++k) {
+    Slot& t = slot_of(k);
+    if (t.epoch == now) continue;
+    t.epoch = now;
+    t.entry = n;
+    offset[n] = t.offset;
+    value[n++] = 1.0f;
   }
-  p.arc_count = p.offset.size();
-  p.value.assign(p.arc_count, 1.0f);
-  const auto& frees = sorted_keys(points.hit_count, points.size());
-  std::size_t h = 0;  // walks the hit offsets alongside (both sorted)
-  for (std::size_t i = 0; i < frees.size();) {
-    const std::ptrdiff_t o = offset_in(frees[i]);
-    float sum = 0.0f;
-    for (; i < frees.size() && offset_in(frees[i]) == o; ++i) {
-      sum += points.weight[static_cast<std::size_t>(frees[i] & 0xffffffffu)];
-    }
-    while (h < p.arc_count && p.offset[h] < o) ++h;
-    if (sum != 0.0f && !(h < p.arc_count && p.offset[h] == o)) {
-      p.offset.push_back(o);
-      p.value.push_back(sum);
+  p.arc_count = n;
+  for (std::size_t k = points.hit_count; k < points.size(); ++k) {
+    Slot& t = slot_of(k);
+    if (t.epoch != now) {
+      t.epoch = now;
+      t.entry = n;
+      offset[n] = t.offset;
+      value[n++] = points.weight[k];
+    } else if (t.entry >= p.arc_count) {
+      value[t.entry] += points.weight[k];
     }
   }
+  std::size_t kept = p.arc_count;
+  for (std::size_t e = p.arc_count; e < n; ++e) {
+    if (value[e] == 0.0f) continue;
+    offset[kept] = offset[e];
+    value[kept++] = value[e];
+  }
+  p.offset.resize(kept);
+  p.value.resize(kept);
+  set_fixed_point(p);
   return p;
+}
+
+PlacedLocalGrid place_heading(const SearchLevel& level, double theta) {
+  if (level.points != nullptr) return place_points(*level.points, theta, *level.global);
+  return place(level.make_local(theta, Eigen::Vector2d::Zero()), *level.global);
 }
 
 SearchResult search_exhaustive(const Lattice& lattice, const SearchLevel& finest) {
@@ -235,7 +344,6 @@ RefinedPose refine(const LatticePose& best, const Lattice& lattice, const Search
                    const std::function<const PlacedLocalGrid*(int it)>& lattice_grid) {
   const PaddedGrid& g = *finest.global;
   const int sub = std::max(1, subdivisions);
-  const Eigen::Vector2d zero = Eigen::Vector2d::Zero();
   auto heading = [&](int j) { return lattice.theta(best.it + static_cast<double>(j) / sub); };
   auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.width && y < g.height; };
 
@@ -246,7 +354,7 @@ RefinedPose refine(const LatticePose& best, const Lattice& lattice, const Search
     const PlacedLocalGrid* built = j % sub == 0 && it >= 0 && it < lattice.headings && lattice_grid
                                        ? lattice_grid(it)
                                        : nullptr;
-    placed.push_back(built ? *built : place(finest.make_local(heading(j), zero), g));
+    placed.push_back(built ? *built : place_heading(finest, heading(j)));
   }
   auto placed_at = [&](int j) -> const PlacedLocalGrid& {
     return placed[static_cast<std::size_t>(j + sub)];

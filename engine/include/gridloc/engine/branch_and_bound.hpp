@@ -33,7 +33,8 @@ struct BoundPyramid {
   float abs_max = 0.0f;       ///< max |value| of the grid and arc view (rounding slack)
   /// When every value of the grid is -1, 0 or 1 (evidence grids): levels 0..depth again as
   /// int8 ([0] = the arc view and the grid themselves), which the bounds read: the same
-  /// values from 4x less memory, so the same sums with fewer cache misses. Empty otherwise.
+  /// values from 4x less memory, so the same sums with fewer cache misses, and from the
+  /// fixed-point kernel's integer lanes. Each ends in kGatherSlack bytes. Empty otherwise.
   std::vector<std::vector<std::int8_t>> arc_max8;
   std::vector<std::vector<std::int8_t>> grid_min8;
   bool ternary() const { return !arc_max8.empty(); }

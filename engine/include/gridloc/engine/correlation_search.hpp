@@ -1,11 +1,14 @@
 #pragma once
 /// The correlation search of seed 001 §2 as free functions: score S = sum L * G of a local
 /// grid placed on a global grid, over a lattice of cells x headings.
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <tuple>
 #include <vector>
 
+#include "gridloc/engine/fixed_point_kernel.hpp"
 #include "gridloc/grids/grid.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 #include "gridloc/sensors/range_scan.hpp"
@@ -25,11 +28,20 @@ enum class ArcRule { Neutral, Signed };
 struct PaddedGrid {
   EvidenceGrid grid;  ///< the padded grid; map cell (ix, iy) is grid cell (ix + pad, iy + pad)
   std::vector<float> arc_view;
+  /// int8 copies of arc_view and grid (plus kGatherSlack readable bytes) when every value of
+  /// both is -1, 0 or 1; empty otherwise. score() reads them with the fixed-point kernel.
+  std::vector<std::int8_t> arc_view8, grid8;
   int pad = 0;
   int width = 0;   ///< the unpadded map's width, cells
   int height = 0;  ///< the unpadded map's height, cells
+  bool ternary() const { return !grid8.empty(); }
 };
 
+/// The cells as int8 (values -1, 0, 1 stay exact), followed by kGatherSlack zero bytes.
+std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells);
+
+/// Throws gridloc::Error when the padded grid would have 2^31 cells or more (offsets are
+/// int32).
 PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule = ArcRule::Neutral);
 
 /// Reference score: sum over local cells of value * global cell (arc cells per `rule`), cells
@@ -41,16 +53,28 @@ double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local,
 /// A local grid turned into flat offsets in one padded grid (computed once per heading):
 /// the first `arc_count` cells are the positive ones, then the negative ones, each group in
 /// the local grid's order.
+/// `fixed` holds value * 2^fixed_shift as integers when every value is such an integer of
+/// magnitude <= 2^15 for some shift in [0, 24] (the smallest is used): scan grids (end cells
+/// +1, free samples -k/n for n a power of 2) are, sonar cones usually are not (fixed empty,
+/// fixed_shift -1). Sums of such products with -1/0/1 grids are exact integers, whatever
+/// the order, which lets correlate() use integer SIMD lanes.
 struct PlacedLocalGrid {
-  std::vector<std::ptrdiff_t> offset;
+  std::vector<std::int32_t> offset;
   std::vector<float> value;
   std::size_t arc_count = 0;
+  std::vector<std::int32_t> fixed;
+  int fixed_shift = -1;
 };
+
+/// Fills `fixed` and `fixed_shift` from `value` (see PlacedLocalGrid).
+void set_fixed_point(PlacedLocalGrid& local);
 
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 
 /// place(rasterize_points(points, theta, resolution), global) without the intermediate grid:
-/// the same offsets, values and order (tested equal), a few times cheaper. `points` must not
+/// the same cells and values, bit for bit (tested), in another order: each group (arc cells,
+/// then free cells) in the order of the points that first reach a cell. Every strategy
+/// places rigid points with it (place_heading), so all sum in one order. `points` must not
 /// reach beyond the padding.
 PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global);
 
@@ -61,7 +85,7 @@ PlacedLocalGrid place_points(const ScanPoints& points, double theta, const Padde
 /// grids whose values are all -1, 0 or 1 (the same values, so the same sums, from 4x less
 /// memory).
 template <typename T>
-double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
+double correlate_scalar(const T* arc, const T* all, const PlacedLocalGrid& local) {
   double positive = 0.0, negative = 0.0;
   const std::size_t n = local.value.size();
   for (std::size_t k = 0; k < local.arc_count; ++k) {
@@ -73,11 +97,31 @@ double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
   return positive + negative;
 }
 
+template <typename T>
+double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
+  return correlate_scalar(arc, all, local);
+}
+
+/// On -1/0/1 grids (read with kGatherSlack bytes of slack) and a fixed-point local grid,
+/// the same sums from integer lanes (correlate_fixed: SIMD where the CPU has it), which
+/// are exact and so equal to correlate_scalar's bit for bit; correlate_scalar otherwise.
+inline double correlate(const std::int8_t* arc, const std::int8_t* all,
+                        const PlacedLocalGrid& local) {
+  if (local.fixed_shift < 0) return correlate_scalar(arc, all, local);
+  return std::ldexp(
+      static_cast<double>(correlate_fixed(arc, all, local.offset.data(), local.fixed.data(),
+                                          local.arc_count, local.offset.size())),
+      -local.fixed_shift);
+}
+
 /// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
 /// and the local grid's extent must not exceed the padding. Equal to score_reference exactly.
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
+  if (global.ternary() && local.fixed_shift >= 0) {
+    return correlate(global.arc_view8.data() + origin, global.grid8.data() + origin, local);
+  }
   return correlate(global.arc_view.data() + origin, global.grid.cells.data() + origin, local);
 }
 
@@ -127,6 +171,10 @@ struct SearchResult {
   long long poses_scored = 0;
   long long cells_scored = 0;
 };
+
+/// The placed local grid of heading theta on `level`: place_points for rigid points,
+/// place(make_local(theta, 0)) otherwise. Every strategy places headings with it.
+PlacedLocalGrid place_heading(const SearchLevel& level, double theta);
 
 /// Exhaustive search over the whole lattice on the finest level. Ties go to the lowest index
 /// in (it, iy, ix) order.
