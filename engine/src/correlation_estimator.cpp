@@ -45,6 +45,46 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
   return peaks;
 }
 
+/// Covariance of the pose around the lattice winner `best`: every lattice pose within k
+/// cells and k heading steps is scored, and read as a likelihood p ∝ exp(S - S_best) (the
+/// score as a log-likelihood: one nat per fully matched unit-weight cell, the reading of a
+/// correlation score real-time correlative matching uses); the weighted covariance of
+/// (x, y, theta) plus the lattice's own quantization variance (step^2 / 12 per axis), rotated
+/// into the world frame by the map's yaw.
+Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
+                                const PaddedGrid& global,
+                                const std::function<PlacedLocalGrid(int)>& placed_at, int k,
+                                double yaw) {
+  const double res = global.grid.geometry.resolution;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  double total = 0.0;
+  for (int it = std::max(0, best.it - k); it <= std::min(lattice.headings - 1, best.it + k); ++it) {
+    const PlacedLocalGrid placed = placed_at(it);
+    for (int iy = std::max(lattice.y0, best.iy - k); iy <= std::min(lattice.y1, best.iy + k);
+         ++iy) {
+      for (int ix = std::max(lattice.x0, best.ix - k); ix <= std::min(lattice.x1, best.ix + k);
+           ++ix) {
+        const double w = std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score));
+        // Offsets from the winner: metres, metres, radians.
+        const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
+                                (it - best.it) * lattice.step_theta);
+        total += w;
+        mean += w * d;
+        second += w * d * d.transpose();
+      }
+    }
+  }
+  mean /= total;
+  Eigen::Matrix3d cov = second / total - mean * mean.transpose();
+  cov(0, 0) += res * res / 12.0;
+  cov(1, 1) += res * res / 12.0;
+  cov(2, 2) += lattice.step_theta * lattice.step_theta / 12.0;
+  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();  // grid frame -> world frame
+  rotate.topLeftCorner<2, 2>() << std::cos(yaw), -std::sin(yaw), std::sin(yaw), std::cos(yaw);
+  return rotate * cov * rotate.transpose();
+}
+
 }  // namespace
 
 std::string to_string(SearchStrategy strategy) {
@@ -95,6 +135,10 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     throw Error("correlation options: hypotheses must be in [1, 100], got " +
                 std::to_string(options_.hypotheses));
   }
+  if (options_.covariance_cells < 0 || options_.covariance_cells > 20) {
+    throw Error("correlation options: covariance_cells must be in [0, 20], got " +
+                std::to_string(options_.covariance_cells));
+  }
   validate(options_.scan);
   if (!(options_.budget_ms >= 0.0) || !std::isfinite(options_.budget_ms)) {
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
@@ -139,9 +183,8 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
 CorrelationEstimator::CorrelationEstimator(OccupancyMap map, CorrelationOptions options)
     : CorrelationEstimator(std::move(map), SonarRing{}, options) {}
 
-Estimate CorrelationEstimator::estimate(const Observation& observation,
-                                        const SearchWindow& window) const {
-  const auto start = std::chrono::steady_clock::now();
+Lattice CorrelationEstimator::lattice_for(const Observation& observation,
+                                          const SearchWindow& window) const {
   if (observation.scan) {
     if (!observation.ranges.empty()) {
       throw Error("observation: give sonar ranges or a scan, not both");
@@ -203,7 +246,14 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   lattice.headings = 2 * nt + 1;
   lattice.theta0 = prior.theta - nt * window.step_theta;
   lattice.step_theta = window.step_theta;
+  return lattice;
+}
 
+Estimate CorrelationEstimator::estimate(const Observation& observation,
+                                        const SearchWindow& window) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Lattice lattice = lattice_for(observation, window);
+  const double res = options_.resolution;
   // A scan under a point model: its points once, rotated per heading.
   std::optional<ScanPoints> points;
   if (observation.scan && options_.scan.model != ScanModel::Rays) {
@@ -301,6 +351,13 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
   e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
   for (const auto& p : peaks) e.alternatives.push_back({to_world(p.ix, p.iy, p.it), p.score});
+  if (options_.covariance_cells > 0) {
+    std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
+      return grids ? grids->placed(it) : place_heading(levels.front(), lattice.theta(it));
+    };
+    e.covariance = peak_covariance(r.best, lattice, *levels.front().global, placed_at,
+                                   options_.covariance_cells, map_.geometry.yaw);
+  }
   e.stats.poses_scored = r.poses_scored;
   e.stats.cells_scored = r.cells_scored;
   e.stats.levels = level_count;
@@ -309,6 +366,51 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   e.stats.elapsed_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return e;
+}
+
+ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
+                                               const SearchWindow& window) const {
+  const Lattice lattice = lattice_for(observation, window);
+  const double res = options_.resolution;
+  std::optional<ScanPoints> points;
+  if (observation.scan && options_.scan.model != ScanModel::Rays) {
+    points = scan_points(*observation.scan, options_.scan);
+  }
+  const ScanPoints* points_ptr = points ? &*points : nullptr;
+  SearchLevel level{&levels_.front(),
+                    [&](double theta, const Eigen::Vector2d& centre) {
+                      return local_grid(observation, points_ptr, theta, res, centre);
+                    },
+                    options_.threads, points_ptr};
+  const SearchResult r = search_exhaustive(lattice, level);
+  ScoreVolume v;
+  v.nx = lattice.x1 - lattice.x0 + 1;
+  v.ny = lattice.y1 - lattice.y0 + 1;
+  v.headings = lattice.headings;
+  v.ix0 = lattice.x0;
+  v.iy0 = lattice.y0;
+  v.resolution = res;
+  v.theta0 = lattice.theta0;
+  v.step_theta = lattice.step_theta;
+  v.geometry = levels_.front().grid.geometry;  // the finest grid: resolution, origin, yaw
+  v.geometry.width = levels_.front().width;
+  v.geometry.height = levels_.front().height;
+  v.scores.assign(static_cast<std::size_t>(v.nx) * v.ny * v.headings, 0.0);
+  for (const LatticePose& p : r.scored) {
+    v.scores[v.index(p.ix - v.ix0, p.iy - v.iy0, p.it)] = p.score;
+  }
+  v.best = {r.best.ix - v.ix0, r.best.iy - v.iy0, r.best.it, r.best.score};
+  v.mass.resize(static_cast<std::size_t>(v.headings));
+  for (int it = 0; it < v.headings; ++it) {
+    v.mass[static_cast<std::size_t>(it)] =
+        local_grid(observation, points_ptr, lattice.theta(it), res, Eigen::Vector2d::Zero()).mass();
+  }
+  return v;
+}
+
+Pose2 ScoreVolume::pose(double x, double y, double t) const {
+  return geometry.to_world_frame(
+      {(ix0 + x + 0.5) * resolution, (iy0 + y + 0.5) * resolution, theta0 + t * step_theta});
 }
 
 SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation,

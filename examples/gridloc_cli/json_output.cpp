@@ -14,6 +14,10 @@ nlohmann::json to_json(const Estimate& e) {
   for (const auto& h : e.alternatives) {
     alternatives.push_back({{"pose", to_json(h.pose)}, {"score", h.score}});
   }
+  nlohmann::json covariance = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) {
+    covariance.push_back({e.covariance(r, 0), e.covariance(r, 1), e.covariance(r, 2)});
+  }
   return {
       {"pose", to_json(e.pose)},
       {"theta_deg", rad2deg(e.pose.theta)},
@@ -22,6 +26,11 @@ nlohmann::json to_json(const Estimate& e) {
       {"second_score", e.second_score},
       {"confidence", e.confidence},
       {"alternatives", alternatives},
+      {"covariance", covariance},  // x, y, theta (m^2, m rad, rad^2), world frame
+      {"std",
+       {{"x", std::sqrt(e.covariance(0, 0))},
+        {"y", std::sqrt(e.covariance(1, 1))},
+        {"theta", std::sqrt(e.covariance(2, 2))}}},
       {"stats",
        {{"poses_scored", e.stats.poses_scored},
         {"cells_scored", e.stats.cells_scored},

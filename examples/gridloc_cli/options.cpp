@@ -101,6 +101,10 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "distinct poses to report in alternatives, the winner included (found "
                   "exactly by bnb, one search each)")
       ->capture_default_str();
+  cmd->add_option("--covariance-cells", covariance_cells,
+                  "covariance from the poses within this many cells and heading steps of the "
+                  "winner (0 = none)")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -127,6 +131,10 @@ void SearchArgs::apply(CorrelationOptions& o) const {
     throw Error("--hypotheses must lie in [1, 100], got " + std::to_string(hypotheses));
   }
   o.hypotheses = hypotheses;
+  if (covariance_cells < 0 || covariance_cells > 20) {
+    throw Error("--covariance-cells must lie in [0, 20], got " + std::to_string(covariance_cells));
+  }
+  o.covariance_cells = covariance_cells;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

@@ -31,9 +31,11 @@ struct SearchArgs {
   bool heading_intervals = false;
   bool no_second_peak = false;
   int hypotheses = CorrelationOptions{}.hypotheses;
+  int covariance_cells = CorrelationOptions{}.covariance_cells;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
-  /// --budget-ms, --heading-intervals, --no-second-peak and --hypotheses.
+  /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and
+  /// --covariance-cells.
   void add_to(CLI::App* cmd);
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;

@@ -48,8 +48,37 @@ struct CorrelationOptions {
   /// are the best distinct poses the first search happened to score, lower bounds, so
   /// `confidence` is then optimistic (0 when it scored none).
   bool second_peak = true;
+  /// Estimate::covariance from the poses within covariance_cells cells and as many heading
+  /// steps of the lattice winner (at most (2k+1)^3 extra scores; 0 turns it off).
+  int covariance_cells = 3;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
+};
+
+/// Every lattice pose of a window scored (the exhaustive search's volume): for heatmaps,
+/// notebooks and the covariance of the peak. Cell (x, y) of the volume is map grid cell
+/// (ix0 + x, iy0 + y) of `geometry` (the finest grid, unpadded); heading index t is heading
+/// theta0 + t * step_theta in the grid frame (pose() gives world poses).
+struct ScoreVolume {
+  int nx = 0, ny = 0, headings = 0;
+  int ix0 = 0, iy0 = 0;        ///< the volume's first map cell
+  double resolution = 0.0;     ///< m per cell
+  double theta0 = 0.0;         ///< grid-frame heading of index 0 (rad)
+  double step_theta = 0.0;     ///< rad
+  GridGeometry geometry;       ///< the finest grid: resolution, size, origin and yaw
+  std::vector<double> scores;  ///< S = sum L * G, at index(x, y, t)
+  std::vector<double> mass;    ///< sum |L| of each heading's local grid: the best possible score
+  LatticePose best;            ///< the exact winner, in volume indices (ties as every strategy)
+
+  std::size_t index(int x, int y, int t) const {
+    return (static_cast<std::size_t>(t) * static_cast<std::size_t>(ny) +
+            static_cast<std::size_t>(y)) *
+               static_cast<std::size_t>(nx) +
+           static_cast<std::size_t>(x);
+  }
+  double at(int x, int y, int t) const { return scores[index(x, y, t)]; }
+  /// World pose of volume coordinates (fractions allowed): the cell's centre, the heading.
+  Pose2 pose(double x, double y, double t) const;
 };
 
 class CorrelationEstimator final : public Estimator {
@@ -70,6 +99,10 @@ class CorrelationEstimator final : public Estimator {
   /// prunes most of the map.
   SearchWindow global_window(const Observation& observation) const;
 
+  /// Scores every lattice pose of `window` (an exhaustive search, whatever the strategy;
+  /// same checks and errors as estimate()).
+  ScoreVolume score_volume(const Observation& observation, const SearchWindow& window) const;
+
   const CorrelationOptions& options() const { return options_; }
   const OccupancyMap& map() const { return map_; }
   const SonarRing& ring() const { return ring_; }
@@ -82,6 +115,10 @@ class CorrelationEstimator final : public Estimator {
   /// are the scan's points under a point model (nullptr otherwise).
   SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,
                              double resolution, const Eigen::Vector2d& centre) const;
+
+  /// Checks the observation and window (throws gridloc::Error naming what is wrong) and
+  /// returns the window's lattice, clipped to the map.
+  Lattice lattice_for(const Observation& observation, const SearchWindow& window) const;
 
   OccupancyMap map_;
   SonarRing ring_;

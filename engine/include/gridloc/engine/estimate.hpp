@@ -42,6 +42,10 @@ struct Estimate {
   double second_score = 0.0;             ///< best score of a pose distinct from the winner
   double confidence = 0.0;               ///< (score - second_score) / score, clamped to [0, 1]
   std::vector<Hypothesis> alternatives;  ///< distinct local maxima, best first (winner included)
+  /// Covariance of (x, y, theta) in the world frame (m^2, m rad, rad^2), from the scores
+  /// around the lattice winner read as a likelihood (see PeakCovariance in the README);
+  /// zero when not computed (CorrelationOptions::covariance off).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   SearchStats stats;
 };
 
