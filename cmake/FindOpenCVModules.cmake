@@ -1,10 +1,11 @@
 # Finds OpenCV's core and imgcodecs from Debian's per-module -dev packages, which ship no
 # OpenCVConfig.cmake (that comes only with the heavy libopencv-dev). Prefers the config
-# package when present. Defines imported targets opencv_core and opencv_imgcodecs.
-find_package(OpenCV QUIET COMPONENTS core imgcodecs)
+# package when present. Defines imported targets opencv_core and opencv_imgcodecs, and
+# opencv_imgproc when it is installed (optional: only the gridloc tool's heatmaps draw with it).
+find_package(OpenCV QUIET COMPONENTS core imgcodecs OPTIONAL_COMPONENTS imgproc)
 if(NOT OpenCV_FOUND)
   find_path(OpenCVModules_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4)
-  foreach(module core imgcodecs)
+  foreach(module core imgcodecs imgproc)
     find_library(OpenCVModules_${module}_LIBRARY opencv_${module})
     if(OpenCVModules_${module}_LIBRARY AND NOT TARGET opencv_${module})
       add_library(opencv_${module} UNKNOWN IMPORTED)

@@ -1,5 +1,6 @@
 // gridloc: localize a robot on a known map from a sonar ring (seed 001), simulate readings,
-// run the demo and the paper's evaluation. Errors print one line and exit with code 2.
+// run the demo and the paper's evaluation, draw tuning heatmaps. Errors print one line and exit
+// with code 2.
 #include <iostream>
 
 #include "commands.hpp"
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   gridloc::cli::add_simulate(app);
   gridloc::cli::add_demo(app);
   gridloc::cli::add_eval(app);
+  gridloc::cli::add_heatmap(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

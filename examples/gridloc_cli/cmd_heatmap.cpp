@@ -1,0 +1,308 @@
+// gridloc heatmap (issue 4): the score volume of a localization as tuning images and files:
+// score over x, y (best heading, max over headings), score against heading, the local grid
+// on the global grid at the estimate, the raw volume as .npy with its axes in volume.json.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/range_scan.hpp"
+#include "gridloc/sensors/readings_io.hpp"
+#include "gridloc/sensors/sonar_model.hpp"
+#include "heatmap_render.hpp"
+#include "options.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Poses a volume may hold: 4 bytes each on disk, ~40 in memory while it is scored.
+constexpr long long kMaxPoses = 30'000'000;
+
+struct HeatmapArgs {
+  std::string map, ring, readings, scan, prior, truth, out;
+  double max_range = 8.0;
+  std::string local = "oriented", global = "thinned";
+  SearchArgs search;
+  SearchWindow window;
+  int levels = 3;
+  bool whole_map = false;         // --global
+  bool step_theta_given = false;  // --step-theta on the command line: honoured by --global too
+};
+
+/// The lattice estimator.score_volume() will score (the same clipping to the map), to refuse
+/// a huge one before allocating it; 0 when the prior lies outside the map (score_volume
+/// then says so).
+struct VolumeSize {
+  long long nx = 0, ny = 0, headings = 0;
+  double poses() const { return static_cast<double>(nx) * ny * headings; }
+};
+
+VolumeSize volume_size(const CorrelationEstimator& est, const SearchWindow& w) {
+  validate(w);
+  const double res = est.options().resolution;
+  const PaddedGrid& g = est.level(0);
+  const Pose2 p = est.map().geometry.to_grid_frame(w.center);
+  const double cx = std::floor(p.x / res), cy = std::floor(p.y / res);
+  if (cx < 0 || cy < 0 || cx >= g.width || cy >= g.height) return {};
+  const double n = std::round(std::min(w.half_xy / res, 1048576.0));
+  VolumeSize v;
+  v.nx = static_cast<long long>(std::min(g.width - 1.0, cx + n) - std::max(0.0, cx - n) + 1);
+  v.ny = static_cast<long long>(std::min(g.height - 1.0, cy + n) - std::max(0.0, cy - n) + 1);
+  v.headings = 2 * std::llround(std::min(w.half_theta / w.step_theta, 1e12)) + 1;
+  return v;
+}
+
+/// NumPy .npy v1.0: magic, version, header length, a Python dict padded with spaces to a
+/// multiple of 64 bytes ending in '\n', then little-endian float32 in C order.
+void write_npy(const std::string& path, const ScoreVolume& v) {
+  static_assert(std::endian::native == std::endian::little, "write_npy assumes little endian");
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                       std::to_string(v.headings) + ", " + std::to_string(v.ny) + ", " +
+                       std::to_string(v.nx) + "), }";
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw Error(path + ": cannot write the score volume");
+  const std::uint16_t length = static_cast<std::uint16_t>(header.size());
+  f.write("\x93NUMPY\x01\x00", 8);
+  f.put(static_cast<char>(length & 0xff));
+  f.put(static_cast<char>(length >> 8));
+  f << header;
+  std::vector<float> data(v.scores.begin(), v.scores.end());
+  f.write(reinterpret_cast<const char*>(data.data()),
+          static_cast<std::streamsize>(data.size() * sizeof(float)));
+  if (!f) throw Error(path + ": cannot write the score volume");
+}
+
+void write_png(const std::string& path, const cv::Mat& img) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 9});
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  if (!ok) throw Error(path + ": cannot write the image");
+}
+
+nlohmann::json volume_json(const ScoreVolume& v, const SearchWindow& window,
+                           const nlohmann::json& files) {
+  const GridGeometry& g = v.geometry;
+  const Pose2 first = v.pose(0, 0, 0);
+  std::vector<double> mass(v.mass.begin(), v.mass.end());
+  return {{"file", "scores.npy"},
+          {"dtype", "float32, little endian"},
+          {"shape", {v.headings, v.ny, v.nx}},
+          {"axes", {"heading", "y", "x"}},
+          {"index",
+           "scores[t, y, x]: heading theta0 + t * step_theta, cell centre (x0, y0) + x * "
+           "resolution * x_axis + y * resolution * y_axis (y grows northwards)"},
+          {"nx", v.nx},
+          {"ny", v.ny},
+          {"headings", v.headings},
+          {"resolution", v.resolution},
+          {"x0", first.x},
+          {"y0", first.y},
+          {"x_axis", {std::cos(g.yaw), std::sin(g.yaw)}},
+          {"y_axis", {-std::sin(g.yaw), std::cos(g.yaw)}},
+          {"theta0", v.theta0 + g.yaw},
+          {"step_theta", v.step_theta},
+          {"theta0_deg", rad2deg(v.theta0 + g.yaw)},
+          {"step_theta_deg", rad2deg(v.step_theta)},
+          {"map_cell0", {v.ix0, v.iy0}},
+          {"map_grid",
+           {{"resolution", g.resolution},
+            {"origin", {g.origin.x(), g.origin.y()}},
+            {"yaw", g.yaw},
+            {"width", g.width},
+            {"height", g.height}}},
+          {"best",
+           {{"x", v.best.ix},
+            {"y", v.best.iy},
+            {"t", v.best.it},
+            {"score", v.best.score},
+            {"pose", to_json(v.pose(v.best.ix, v.best.iy, v.best.it))}}},
+          {"mass", mass},
+          {"window",
+           {{"center", to_json(window.center)},
+            {"half_xy", window.half_xy},
+            {"half_theta", window.half_theta},
+            {"step_xy", window.step_xy},
+            {"step_theta", window.step_theta}}},
+          {"files", files}};
+}
+
+/// Two lines under each image's title: what was matched, and where.
+std::string caption(const HeatmapArgs& a, const Observation& obs, const SearchWindow& w,
+                    const ScoreVolume& v, const Estimate& e) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s << fs::path(a.map).filename().string() << ", ";
+  if (obs.scan) {
+    s << "scan of " << obs.scan->ranges.size() << " beams (" << a.search.scan_model << " model, "
+      << a.global << " global grid)\n";
+  } else {
+    s << obs.ranges.size() << " sonar readings (" << a.local << " local grid, " << a.global
+      << " global grid, " << a.search.arc_rule << " arcs)\n";
+  }
+  if (a.whole_map) {
+    s << "whole map, every heading";
+  } else {
+    s << std::setprecision(2) << "window +-" << w.half_xy << " m, +-" << std::setprecision(0)
+      << rad2deg(w.half_theta) << " deg around the prior (" << std::setprecision(2) << w.center.x
+      << ", " << w.center.y << " m, " << std::setprecision(1) << rad2deg(w.center.theta) << " deg)";
+  }
+  s << std::setprecision(2) << "; lattice " << v.resolution << " m x " << std::setprecision(1)
+    << rad2deg(v.step_theta) << " deg; best S " << std::setprecision(2) << e.score << " of "
+    << v.mass[static_cast<std::size_t>(v.best.it)] << " possible";
+  return s.str();
+}
+
+void run(const HeatmapArgs& a) {
+  if (a.out.empty()) throw Error("--out: give the folder to write the heatmaps in");
+  if (a.whole_map == !a.prior.empty()) throw Error("give either --prior x,y,theta or --global");
+  if (a.readings.empty() == a.scan.empty()) {
+    throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
+  }
+  std::optional<Pose2> truth;
+  if (!a.truth.empty()) truth = parse_pose(a.truth, "--truth");
+  Observation obs;
+  if (a.scan.empty()) {
+    obs.ranges = load_readings(a.readings);
+  } else {
+    obs.scan = load_scan_csv(a.scan, a.max_range);
+  }
+
+  CorrelationOptions o;
+  o.local = parse_local(a.local);
+  o.global = parse_global(a.global);
+  a.search.apply(o);
+  o.resolution = a.window.step_xy;
+  o.levels = a.levels;
+  o.reach_m = obs.scan ? a.max_range : 0.0;
+  const CorrelationEstimator estimator =
+      obs.scan ? CorrelationEstimator(load_ros_map(a.map), o)
+               : CorrelationEstimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
+  SearchWindow window = a.window;
+  if (a.whole_map) {
+    window = estimator.global_window(obs);
+    // The volume is exhaustive, so let a coarser heading step make a global one affordable.
+    if (a.step_theta_given) window.step_theta = a.window.step_theta;
+  } else {
+    window.center = parse_pose(a.prior, "--prior");
+  }
+  const VolumeSize size = volume_size(estimator, window);
+  if (size.poses() > static_cast<double>(kMaxPoses)) {
+    std::ostringstream m;
+    m << "heatmap: the score volume would hold " << size.nx << " x " << size.ny << " cells x "
+      << size.headings << " headings = " << std::llround(size.poses()) << " poses, more than "
+      << kMaxPoses << "; use a smaller --window-xy or --window-theta, or a larger --step-theta";
+    throw Error(m.str());
+  }
+
+  const Estimate e = estimator.estimate(obs, window);
+  const ScoreVolume v = estimator.score_volume(obs, window);
+
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (!fs::is_directory(a.out)) throw Error("--out " + a.out + ": cannot create the folder");
+  const fs::path dir(a.out);
+  auto file = [&](const std::string& name) { return (dir / name).string(); };
+
+  HeatmapMarks marks;
+  marks.estimate = e.pose;
+  marks.hypotheses = e.alternatives;
+  marks.truth = truth;
+  marks.caption = caption(a, obs, window, v, e);
+
+  // The local grid at the refined pose: its robot cell and the centre's offset in it.
+  const Pose2 p = v.geometry.to_grid_frame(e.pose);
+  const double res = v.resolution;
+  const Cell robot = v.geometry.cell_of(p.x, p.y);
+  const Eigen::Vector2d centre(p.x - (robot.ix + 0.5) * res, p.y - (robot.iy + 0.5) * res);
+  const SparseLocalGrid local =
+      obs.scan ? rasterize_scan(*obs.scan, p.theta, res, centre, o.scan)
+               : rasterize(estimator.ring(), obs.ranges, p.theta, res, o.local, centre, o.sonar);
+
+  // volume.json names the files relative to its folder; stdout gives their paths.
+  const nlohmann::json names = {{"score_xy_best_theta", "score_xy_best_theta.png"},
+                                {"score_xy_max_theta", "score_xy_max_theta.png"},
+                                {"score_theta", "score_theta.png"},
+                                {"local_overlay", "local_overlay.png"},
+                                {"scores", "scores.npy"},
+                                {"volume", "volume.json"}};
+  nlohmann::json files;
+  for (const auto& [key, name] : names.items()) files[key] = file(name.get<std::string>());
+  write_png(file("score_xy_best_theta.png"), render_score_xy(v, estimator.map(), marks, false));
+  write_png(file("score_xy_max_theta.png"), render_score_xy(v, estimator.map(), marks, true));
+  write_png(file("score_theta.png"), render_score_theta(v, marks));
+  write_png(file("local_overlay.png"),
+            render_local_overlay(estimator.level(0), v.geometry, local, robot,
+                                 estimator.ring().footprint, marks));
+  write_npy(file("scores.npy"), v);
+  {
+    std::ofstream f(file("volume.json"));
+    f << volume_json(v, window, names).dump(2) << "\n";
+    if (!f) throw Error(file("volume.json") + ": cannot write the volume description");
+  }
+
+  nlohmann::json j = to_json(e);
+  j["lattice"] = {{"pose", to_json(e.lattice_pose)}, {"score", e.score}};
+  j["volume"] = {{"shape", {v.headings, v.ny, v.nx}}, {"max_score", v.best.score}};
+  j["files"] = files;
+  std::cout << j.dump(2) << "\n";
+}
+
+}  // namespace
+
+void add_heatmap(CLI::App& app) {
+  auto a = std::make_shared<HeatmapArgs>();
+  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  auto* cmd = app.add_subcommand(
+      "heatmap", "Score volume of a localization as images (PNG) and a NumPy file, for tuning");
+  cmd->add_option("--map", a->map, "map_server YAML of the known map")->required();
+  cmd->add_option("--out", a->out, "folder for the images and files (created if missing)")
+      ->required();
+  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--readings", a->readings, "sonar readings JSON {\"ranges_m\": [...]}");
+  cmd->add_option("--scan", a->scan, "laser/IR scan CSV: angle_rad,range_m per line");
+  cmd->add_option("--max-range", a->max_range, "scan max range (m); longer ranges are no return")
+      ->capture_default_str();
+  cmd->add_option("--prior", a->prior, "prior pose x,y,theta (m, m, rad)");
+  cmd->add_flag("--global", a->whole_map,
+                "no prior: the whole map and every heading (at --step-theta when given)");
+  cmd->add_option("--truth", a->truth, "true pose x,y,theta (m, m, rad), drawn when given");
+  cmd->add_option("--window-xy", a->window.half_xy, "half width of the search square (m)")
+      ->capture_default_str();
+  cmd->add_option("--window-theta", a->window.half_theta, "half width of the heading cone (rad)")
+      ->capture_default_str();
+  cmd->add_option("--step-xy", a->window.step_xy, "translation step = grid cell (m)")
+      ->capture_default_str();
+  cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")
+      ->capture_default_str();
+  cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
+  cmd->add_option("--global-grid", a->global, "global grid: thinned | raw")->capture_default_str();
+  cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
+  a->search.add_to(cmd);
+  cmd->callback([a, cmd] {
+    a->step_theta_given = cmd->count("--step-theta") > 0;
+    run(*a);
+  });
+}
+
+}  // namespace gridloc::cli
