@@ -167,18 +167,36 @@ def apartment_small():
     return m
 
 
+def room_symmetric():
+    # The one deliberately symmetric map: turned by 180 degrees about its centre it is the
+    # same room, so every pose has a twin that reads the same (the ambiguity tests need it).
+    m = Map("room_symmetric", "Symmetric room 6.0 x 4.0 m: two doors and two cupboards placed "
+            "so that the room is the same turned by 180 degrees", 6.0, 4.0, (-0.5, -0.5))
+    m.rooms([(0, 0, 6.0, 4.0)])
+    m.door(1.0, -WALL, 1.9, 0)            # 0.9 m door, south wall, west of centre
+    m.door(4.1, 4.0, 5.0, 4.0 + WALL)     # its twin, north wall, east of centre
+    m.rect(0, 2.6, 0.6, 3.6)              # cupboard 0.6 x 1.0 against the west wall
+    m.rect(5.4, 0.4, 6.0, 1.4)            # its twin against the east wall
+    return m
+
+
+SYMMETRIC = ("room_symmetric",)
+
+
 def main():
     show = "--ascii" in sys.argv
     ok = True
-    for build in (room_rect, room_l, room_furnished, apartment_small):
+    for build in (room_rect, room_l, room_furnished, apartment_small, room_symmetric):
         m = build()
         m.save()
         comps = m.free_components()
         asym = m.rot180_mismatch()
         print("%-16s %4d x %4d px  (%.2f x %.2f m)  free regions: %d  rot180 mismatch: %.1f%%"
               % (m.name, m.w, m.h, m.w * RES, m.h * RES, len(comps), 100 * asym))
-        if len(comps) != 1 or asym < 0.01:
-            print("  ERROR: free space must be one connected region, and not 180-degree symmetric")
+        symmetric = m.name in SYMMETRIC
+        if len(comps) != 1 or (asym < 0.01) != symmetric:
+            print("  ERROR: free space must be one connected region, and 180-degree symmetric "
+                  "exactly when the map is meant to be")
             ok = False
         if show:
             print(m.ascii())
