@@ -300,5 +300,50 @@ TEST_F(Cli, EvalJson) {
           {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
 }
 
+TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
+  const std::string csv = (dir.path() / "trials.csv").string();
+  const CliRun r = run_cli(
+      dir, "eval --noisy --trials 12 --maps room_l --json --quiet --trials-out " + quote(csv));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j.at("noisy").get<bool>());
+  for (const auto& c : j.at("configurations")) {
+    // A number, or null when a configuration had no failure (or no success) to separate.
+    for (const char* key : {"auroc", "failures_flagged_at_95_recall"}) {
+      ASSERT_TRUE(c.contains(key)) << key << " in " << c.dump();
+      EXPECT_TRUE(c.at(key).is_number() || c.at(key).is_null()) << c.dump();
+    }
+  }
+  std::ifstream in(csv);
+  ASSERT_TRUE(in) << csv;
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find("success,wrong_prior,furniture"), std::string::npos) << header;
+  EXPECT_NE(header.find("confidence"), std::string::npos) << header;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 12 * 4);  // every trial of the four configurations
+}
+
+TEST_F(Cli, LocalizeGivesTheVerdict) {
+  const std::string room_l = test::map_path("room_l");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2.4,1.6,0.3");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(room_l) + " --readings " +
+                                    quote(readings) + " --prior 2.6,1.5,0.4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("verdict").get<std::string>(), "localized");
+  EXPECT_FALSE(j.at("ambiguous").get<bool>());
+  const double confidence = j.at("confidence");
+  const auto& parts = j.at("confidence_parts");
+  const double product = parts.at("fit").get<double>() * parts.at("agreement").get<double>() *
+                         parts.at("distinctness").get<double>() *
+                         parts.at("sharpness").get<double>();
+  EXPECT_NEAR(confidence, product, 1e-12);
+  EXPECT_EQ(j.at("covariance").size(), 3u);
+}
+
 }  // namespace
 }  // namespace gridloc

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
 
 namespace gridloc {
 namespace {
@@ -85,7 +86,65 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
   return rotate * cov * rotate.transpose();
 }
 
+/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e` (README,
+/// "Knowing when it is wrong"). `searched_second`: a distinct hypothesis was looked for.
+void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
+  ConfidenceParts& c = e.confidence_parts;
+  c.fit = std::clamp(e.normalized_score, 0.0, 1.0);
+  c.agreement = std::isnan(e.agreement) ? 1.0 : e.agreement;
+  const double distinct =
+      e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
+  c.distinctness = searched_second ? distinct / (distinct + v.distinct_scale) : 1.0;
+  const double spread = std::sqrt(std::max(0.0, e.covariance(0, 0) + e.covariance(1, 1)));
+  c.sharpness = std::exp(-spread / v.spread_scale_m);
+  e.confidence = c.agreement * c.fit * c.distinctness * c.sharpness;
+  e.ambiguous = false;
+  for (std::size_t k = 1; k < e.alternatives.size(); ++k) {
+    const Hypothesis& h = e.alternatives[k];
+    const double far = std::hypot(h.pose.x - e.lattice_pose.x, h.pose.y - e.lattice_pose.y);
+    const double turn = std::abs(normalize_angle(h.pose.theta - e.lattice_pose.theta));
+    if (h.score >= v.ambiguity_ratio * e.score && e.score > 0.0 &&
+        (far > v.ambiguity_xy || turn > v.ambiguity_theta)) {
+      e.ambiguous = true;
+    }
+  }
+  e.verdict = e.ambiguous                              ? Verdict::Ambiguous
+              : e.confidence >= v.localized_confidence ? Verdict::Localized
+                                                       : Verdict::NotLocalized;
+}
+
+/// Estimate::agreement: the share of `ranges` that a noise-free simulation on `map` at
+/// `pose` reproduces within 10 cm + 5 % (or both without echo).
+double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
+                         const std::vector<double>& ranges, const Pose2& pose) {
+  const std::vector<double> expected = simulate_sonar(map, ring, pose);
+  int agree = 0;
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    const double limit = ring.sonars[i].max_range;
+    const bool none = ranges[i] >= limit, none_expected = expected[i] >= limit;
+    if (none && none_expected) {
+      ++agree;
+    } else if (!none && !none_expected &&
+               std::abs(ranges[i] - expected[i]) <= 0.10 + 0.05 * expected[i]) {
+      ++agree;
+    }
+  }
+  return ranges.empty() ? 0.0 : static_cast<double>(agree) / static_cast<double>(ranges.size());
+}
+
 }  // namespace
+
+std::string to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Localized:
+      return "localized";
+    case Verdict::Ambiguous:
+      return "ambiguous";
+    case Verdict::NotLocalized:
+      return "not localized";
+  }
+  return "unknown";
+}
 
 std::string to_string(SearchStrategy strategy) {
   switch (strategy) {
@@ -308,6 +367,22 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
     e.pose = to_world(refined.ix, refined.iy, refined.it);
   }
   e.score = r.best.score;
+  e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
+                                 : reading_agreement(map_, ring_, observation.ranges, e.pose);
+  {
+    const double span = 2.0 * window.half_xy / res;  // the unclipped window, in cells
+    const Pose2 prior = map_.geometry.to_grid_frame(window.center);
+    const int cx = static_cast<int>(std::floor(prior.x / res));
+    const int cy = static_cast<int>(std::floor(prior.y / res));
+    const int n = static_cast<int>(std::lround(span / 2.0));
+    const bool x_edge = (r.best.ix == lattice.x0 && lattice.x0 == cx - n) ||
+                        (r.best.ix == lattice.x1 && lattice.x1 == cx + n);
+    const bool y_edge = (r.best.iy == lattice.y0 && lattice.y0 == cy - n) ||
+                        (r.best.iy == lattice.y1 && lattice.y1 == cy + n);
+    const bool all_headings = lattice.headings * window.step_theta >= 2.0 * std::numbers::pi;
+    const bool t_edge = !all_headings && (r.best.it == 0 || r.best.it == lattice.headings - 1);
+    e.on_window_edge = x_edge || y_edge || t_edge;
+  }
   const double mass =
       local_grid(observation, points_ptr, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero())
           .mass();
@@ -349,7 +424,6 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
     peaks = distinct_peaks(r.scored, res, window.step_theta, options_, wanted);
   }
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
-  e.confidence = e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
   for (const auto& p : peaks) e.alternatives.push_back({to_world(p.ix, p.iy, p.it), p.score});
   if (options_.covariance_cells > 0) {
     std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
@@ -358,6 +432,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
     e.covariance = peak_covariance(r.best, lattice, *levels.front().global, placed_at,
                                    options_.covariance_cells, map_.geometry.yaw);
   }
+  judge(e, peaks.size() > 1, options_.verdict);
   e.stats.poses_scored = r.poses_scored;
   e.stats.cells_scored = r.cells_scored;
   e.stats.levels = level_count;

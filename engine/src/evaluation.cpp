@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <memory>
 
 #include "gridloc/grids/error.hpp"
@@ -75,6 +77,61 @@ Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double cl
   throw Error("evaluation: found no free pose with the requested clearance on this map");
 }
 
+double auroc(const std::vector<double>& positives, const std::vector<double>& negatives) {
+  if (positives.empty() || negatives.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> neg = negatives;
+  std::sort(neg.begin(), neg.end());
+  double wins = 0.0;  // pairs where the positive scores higher, ties counting half
+  for (double p : positives) {
+    const auto below = std::lower_bound(neg.begin(), neg.end(), p) - neg.begin();
+    const auto not_above = std::upper_bound(neg.begin(), neg.end(), p) - neg.begin();
+    wins += static_cast<double>(below) + 0.5 * static_cast<double>(not_above - below);
+  }
+  return wins / (static_cast<double>(positives.size()) * static_cast<double>(neg.size()));
+}
+
+double flagged_at_recall(const std::vector<double>& positives, const std::vector<double>& negatives,
+                         double recall) {
+  if (positives.empty() || negatives.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> pos = positives;
+  std::sort(pos.begin(), pos.end(), std::greater<>());
+  // The highest threshold with at least `recall` of the positives at or above it.
+  const auto keep = static_cast<std::size_t>(std::ceil(recall * static_cast<double>(pos.size())));
+  const double threshold = pos[std::clamp<std::size_t>(keep, 1, pos.size()) - 1];
+  const auto flagged =
+      std::count_if(negatives.begin(), negatives.end(), [&](double v) { return v < threshold; });
+  return static_cast<double>(flagged) / static_cast<double>(negatives.size());
+}
+
+OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double keep_clear,
+                           Rng& rng) {
+  OccupancyMap world = map;
+  const GridGeometry& g = map.geometry;
+  const Pose2 k = g.to_grid_frame(keep);
+  const int boxes = 2 + static_cast<int>(rng.next() % 3);
+  for (int b = 0, attempts = 0; b < boxes && attempts < 200; ++attempts) {
+    const double w = rng.uniform(0.3, 0.8), h = rng.uniform(0.3, 0.8);
+    const double x0 = rng.uniform(0.0, g.width * g.resolution - w);
+    const double y0 = rng.uniform(0.0, g.height * g.resolution - h);
+    // The box's nearest point to the kept pose must be keep_clear away.
+    const double nx = std::clamp(k.x, x0, x0 + w) - k.x, ny = std::clamp(k.y, y0, y0 + h) - k.y;
+    if (std::hypot(nx, ny) < keep_clear) continue;
+    const Cell a = g.cell_of(x0, y0), z = g.cell_of(x0 + w, y0 + h);
+    bool free = true;
+    for (int iy = a.iy; iy <= z.iy && free; ++iy) {
+      for (int ix = a.ix; ix <= z.ix && free; ++ix) {
+        free = g.contains(ix, iy) && map.at(ix, iy) == CellState::Free;
+      }
+    }
+    if (!free) continue;
+    for (int iy = a.iy; iy <= z.iy; ++iy) {
+      for (int ix = a.ix; ix <= z.ix; ++ix) world.at(ix, iy) = CellState::Occupied;
+    }
+    ++b;
+  }
+  return world;
+}
+
 EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& ring,
                           const EvalOptions& options,
                           const std::function<void(int, int)>& progress) {
@@ -85,6 +142,7 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
   std::vector<int> successes(nc, 0);
   const int total = options.trials * static_cast<int>(maps.size());
   int done = 0;
+  EvalReport report;
 
   for (std::size_t m = 0; m < maps.size(); ++m) {
     std::vector<std::unique_ptr<CorrelationEstimator>> estimators;
@@ -97,14 +155,36 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
     for (int t = 0; t < options.trials; ++t) {
       Rng rng(mix(mix(options.seed, m), static_cast<std::uint64_t>(t)));
       const Pose2 truth = sample_free_pose(maps[m].map, ring, options.clearance_m, rng);
-      SonarSimOptions noise = options.noise;
+      const NoisyProtocol& noisy = options.noisy;
+      SonarSimOptions noise = noisy.enabled ? noisy.noise : options.noise;
       noise.seed = rng.next();
-      const Observation obs{simulate_sonar(maps[m].map, ring, truth, noise)};
+      // The noisy protocol's draws come after the plain protocol's, which stay as they were.
+      const bool furniture = noisy.enabled && rng.uniform(0.0, 1.0) < noisy.furniture_prob;
+      const bool wrong_prior = noisy.enabled && rng.uniform(0.0, 1.0) < noisy.wrong_prior_prob;
+      double footprint_radius = 0.0;
+      for (const auto& p : ring.footprint.polygon) {
+        footprint_radius = std::max(footprint_radius, p.norm());
+      }
+      const OccupancyMap* world = &maps[m].map;
+      OccupancyMap changed;
+      if (furniture) {
+        changed = add_furniture(maps[m].map, truth, footprint_radius + 0.3, rng);
+        world = &changed;
+      }
+      const Observation obs{simulate_sonar(*world, ring, truth, noise)};
       SearchWindow window = options.window;
       window.center = {
           truth.x + rng.uniform(-window.half_xy, window.half_xy),
           truth.y + rng.uniform(-window.half_xy, window.half_xy),
           normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
+      if (wrong_prior) {  // one axis 1.5-3 half sizes off: the truth is outside the window
+        const double off = window.half_xy * rng.uniform(1.5, 3.0) * (rng.next() % 2 ? 1 : -1);
+        if (rng.next() % 2) {
+          window.center.x = truth.x + off;
+        } else {
+          window.center.y = truth.y + off;
+        }
+      }
       // A perturbed prior can leave a map whose edge is close; pull it back onto the map.
       const Pose2 g = maps[m].map.geometry.to_grid_frame(window.center);
       const GridGeometry& geo = maps[m].map.geometry;
@@ -120,15 +200,21 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
         pos_err[c].push_back(dp);
         head_err[c].push_back(rad2deg(dt));
         ms[c].push_back(e.stats.elapsed_ms);
-        if (dp <= options.success_xy && dt <= options.success_theta) ++successes[c];
+        const bool success = dp <= options.success_xy && dt <= options.success_theta;
+        if (success) ++successes[c];
+        report.records.push_back(
+            {maps[m].name, t, c, success, wrong_prior, furniture, dp, rad2deg(dt), e});
       }
       if (progress) progress(++done, total);
     }
   }
 
-  EvalReport report;
   report.trials = total;
   for (std::size_t c = 0; c < nc; ++c) {
+    std::vector<double> good, bad;  // confidences of successes and failures
+    for (const TrialRecord& r : report.records) {
+      if (r.configuration == c) (r.success ? good : bad).push_back(r.estimate.confidence);
+    }
     ConfigurationResult r;
     r.configuration = options.configurations[c];
     r.trials = total;
@@ -137,6 +223,8 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
     for (double v : pos_err[c]) r.mean_position_error_m += v / total;
     for (double v : head_err[c]) r.mean_heading_error_deg += v / total;
     r.median_ms = median(ms[c]);
+    r.auroc = auroc(good, bad);
+    r.failures_flagged_at_95_recall = flagged_at_recall(good, bad, 0.95);
     report.configurations.push_back(r);
   }
   return report;

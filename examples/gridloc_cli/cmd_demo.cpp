@@ -61,8 +61,8 @@ void run(const DemoArgs& a) {
   line("estimate", e.pose);
   std::printf("error     %.3f m, %.2f deg  -> %s (success: <= 0.10 m and <= 7 deg)\n", dp, dt,
               success ? "success" : "FAILURE");
-  std::printf("score     %.3f (normalized %.3f), confidence %.2f\n", e.score, e.normalized_score,
-              e.confidence);
+  std::printf("score     %.3f (normalized %.3f), confidence %.2f -> %s\n", e.score,
+              e.normalized_score, e.confidence, to_string(e.verdict).c_str());
   const bool multires = estimator.options().strategy == SearchStrategy::Multires;
   std::printf("time      %.2f ms (%s search, %lld poses scored%s; window +-%.2f m, +-%.0f deg)\n",
               e.stats.elapsed_ms, to_string(estimator.options().strategy).c_str(),

@@ -1,5 +1,7 @@
 // gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}.
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -20,7 +22,34 @@ struct EvalArgs {
   std::uint64_t seed = 1;
   bool json = false;
   bool quiet = false;
+  bool noisy = false;
+  std::string trials_out;
 };
+
+/// A number, or null when it is NaN (an AUROC without failures).
+nlohmann::json number_or_null(double v) {
+  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+}
+
+/// One line per trial and configuration: what calibration studies need.
+void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& o) {
+  std::ofstream out(path);
+  if (!out) throw Error("--trials-out: cannot write " + path);
+  out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
+         "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
+         "std_theta,on_window_edge,agreement\n";
+  for (const TrialRecord& r : report.records) {
+    const EvalConfiguration& c = o.configurations[r.configuration];
+    const Estimate& e = r.estimate;
+    out << r.map << ',' << r.trial << ',' << to_string(c.local) << ',' << to_string(c.global) << ','
+        << r.success << ',' << r.wrong_prior << ',' << r.furniture << ',' << r.position_error_m
+        << ',' << r.heading_error_deg << ',' << e.score << ',' << e.normalized_score << ','
+        << e.second_score << ',' << e.confidence << ',' << std::sqrt(e.covariance(0, 0)) << ','
+        << std::sqrt(e.covariance(1, 1)) << ',' << std::sqrt(e.covariance(2, 2)) << ','
+        << e.on_window_edge << ',' << e.agreement << '\n';
+  }
+  if (!out) throw Error("--trials-out: writing " + path + " failed");
+}
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -42,6 +71,7 @@ void run(const EvalArgs& a) {
   } else if (a.noise != "realistic") {
     throw Error("--noise must be realistic or none, not '" + a.noise + "'");
   }
+  o.noisy.enabled = a.noisy;
   std::vector<EvalMap> maps;
   for (const auto& path : split(a.maps)) {
     // A bare name means a bundled map.
@@ -54,23 +84,27 @@ void run(const EvalArgs& a) {
   if (maps.empty()) throw Error("--maps names no map");
   const SonarRing ring = load_sonar_ring(a.ring);
 
-  const auto report = run_evaluation(maps, ring, o, [&](int done, int total) {
+  const EvalReport report = run_evaluation(maps, ring, o, [&](int done, int total) {
     if (a.quiet) return;
     std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, 4 configurations)", done,
                  total, maps.size(), a.trials);
     if (done == total) std::fprintf(stderr, "\n");
   });
 
+  if (!a.trials_out.empty()) write_trials(a.trials_out, report, o);
   if (a.json) {
     nlohmann::json configs = nlohmann::json::array();
     for (const auto& c : report.configurations) {
-      configs.push_back({{"local", to_string(c.configuration.local)},
-                         {"global", to_string(c.configuration.global)},
-                         {"success_rate", c.success_rate},
-                         {"successes", c.successes},
-                         {"mean_position_error_m", c.mean_position_error_m},
-                         {"mean_heading_error_deg", c.mean_heading_error_deg},
-                         {"median_ms", c.median_ms}});
+      configs.push_back(
+          {{"local", to_string(c.configuration.local)},
+           {"global", to_string(c.configuration.global)},
+           {"success_rate", c.success_rate},
+           {"successes", c.successes},
+           {"mean_position_error_m", c.mean_position_error_m},
+           {"mean_heading_error_deg", c.mean_heading_error_deg},
+           {"median_ms", c.median_ms},
+           {"auroc", number_or_null(c.auroc)},
+           {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)}});
     }
     nlohmann::json names = nlohmann::json::array();
     for (const auto& m : maps) names.push_back(m.name);
@@ -78,7 +112,8 @@ void run(const EvalArgs& a) {
                                 {"maps", names},
                                 {"seed", a.seed},
                                 {"strategy", a.search.strategy},
-                                {"noise", a.noise},
+                                {"noise", a.noisy ? "noisy" : a.noise},
+                                {"noisy", a.noisy},
                                 {"arc_rule", a.search.arc_rule},
                                 {"arc_depth_cells", a.search.arc_depth},
                                 {"configurations", configs}}
@@ -87,18 +122,29 @@ void run(const EvalArgs& a) {
     return;
   }
   std::printf(
-      "seed 001 protocol: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
+      "seed 001 protocol%s: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
       "depth %.2g cells\n",
-      report.trials, maps.size(), static_cast<unsigned long long>(a.seed),
-      a.search.strategy.c_str(), a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth);
-  std::printf("%-9s %-8s %9s %14s %16s %10s\n", "local", "global", "success", "mean pos err",
-              "mean head err", "median");
+      a.noisy ? " (noisy: harsh noise, wrong priors, furniture)" : "", report.trials, maps.size(),
+      static_cast<unsigned long long>(a.seed), a.search.strategy.c_str(),
+      a.noisy ? "harsh" : a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth);
+  std::printf("%-9s %-8s %9s %14s %16s %10s %7s %9s\n", "local", "global", "success",
+              "mean pos err", "mean head err", "median", "AUROC", "flagged");
+  auto percent_or_dash = [](double v, double scale) {
+    char buf[32];
+    if (std::isnan(v)) return std::string("-");
+    std::snprintf(buf, sizeof buf, "%.*f", scale > 1.0 ? 1 : 3, v * scale);
+    return std::string(buf) + (scale > 1.0 ? "%" : "");
+  };
   for (const auto& c : report.configurations) {
-    std::printf("%-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms\n",
+    std::printf("%-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s\n",
                 to_string(c.configuration.local).c_str(), to_string(c.configuration.global).c_str(),
                 100.0 * c.success_rate, c.mean_position_error_m, c.mean_heading_error_deg,
-                c.median_ms);
+                c.median_ms, percent_or_dash(c.auroc, 1.0).c_str(),
+                percent_or_dash(c.failures_flagged_at_95_recall, 100.0).c_str());
   }
+  std::printf(
+      "AUROC: how well the confidence separates successes from failures; flagged: failures "
+      "below the confidence that keeps 95%% of successes.\n");
 }
 
 }  // namespace
@@ -117,6 +163,11 @@ void add_eval(CLI::App& app) {
   a->search.add_to(cmd);
   cmd->add_flag("--json", a->json, "print JSON instead of the table");
   cmd->add_flag("--quiet", a->quiet, "no progress line");
+  cmd->add_flag("--noisy", a->noisy,
+                "the calibration protocol: harsh noise (3 cm + 2 %, 5 % dropouts and "
+                "crosstalk, specular beyond 60 deg), 15 % wrong priors, 25 % furniture changes");
+  cmd->add_option("--trials-out", a->trials_out,
+                  "write every trial (errors, scores, confidence, std) to this CSV");
   cmd->callback([a] { run(*a); });
 }
 

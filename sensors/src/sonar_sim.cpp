@@ -74,6 +74,17 @@ SonarSimOptions SonarSimOptions::realistic(std::uint64_t seed) {
   return o;
 }
 
+SonarSimOptions SonarSimOptions::harsh(std::uint64_t seed) {
+  SonarSimOptions o;
+  o.seed = seed;
+  o.range_sigma_m = 0.03;
+  o.range_sigma_frac = 0.02;
+  o.dropout_prob = 0.05;
+  o.specular_incidence_deg = 60.0;
+  o.crosstalk_prob = 0.05;
+  return o;
+}
+
 std::vector<double> simulate_sonar(const OccupancyMap& map, const SonarRing& ring,
                                    const Pose2& pose, const SonarSimOptions& o) {
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {

@@ -18,6 +18,17 @@ namespace gridloc {
 /// Multires (seed 001 §2) may miss the winner when a coarse level misleads it.
 enum class SearchStrategy { Exhaustive, Multires, BranchAndBound };
 
+/// Thresholds of the verdict and scales of the confidence (README, "Knowing when it is
+/// wrong"); the defaults come from the noisy evaluation protocol.
+struct VerdictOptions {
+  double localized_confidence = 0.20;     ///< below: not localized
+  double ambiguity_ratio = 0.97;          ///< a hypothesis scoring this share of the best ...
+  double ambiguity_xy = 0.5;              ///< ... farther than this (m) ...
+  double ambiguity_theta = 0.5235987756;  ///< ... or turned more than this (rad, 30 deg)
+  double distinct_scale = 0.01;           ///< d0 of distinctness d / (d + d0)
+  double spread_scale_m = 0.5;            ///< s0 of sharpness exp(-spread / s0)
+};
+
 struct CorrelationOptions {
   LocalModel local = LocalModel::Oriented;    ///< oriented (seed 001 §3) or turned (baseline)
   GlobalModel global = GlobalModel::Thinned;  ///< thinned (seed 001 §5) or raw (baseline)
@@ -51,6 +62,7 @@ struct CorrelationOptions {
   /// Estimate::covariance from the poses within covariance_cells cells and as many heading
   /// steps of the lattice winner (at most (2k+1)^3 extra scores; 0 turns it off).
   int covariance_cells = 3;
+  VerdictOptions verdict;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
 };

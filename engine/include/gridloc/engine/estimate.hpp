@@ -1,5 +1,6 @@
 #pragma once
 /// What an estimator returns, and where it searches.
+#include <string>
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
@@ -34,14 +35,42 @@ struct SearchStats {
   double upper_bound = 0.0;
 };
 
+/// What a navigation stack acts on: drive (localized), ask for help or move to break the
+/// symmetry (ambiguous: another place reads the same), relocalize (not localized).
+enum class Verdict { Localized, Ambiguous, NotLocalized };
+
+/// "localized", "ambiguous" or "not localized".
+std::string to_string(Verdict verdict);
+
+/// The factors of Estimate::confidence, each in [0, 1] (README, "Knowing when it is wrong").
+struct ConfidenceParts {
+  double fit = 0.0;           ///< normalized_score clamped: how much of the best possible score
+  double agreement = 0.0;     ///< Estimate::agreement (1 for scans, which have none)
+  double distinctness = 0.0;  ///< d / (d + 0.01), d = (score - second_score) / score
+  double sharpness = 0.0;     ///< exp(-sqrt(var x + var y) / 0.5 m), from the covariance
+};
+
 struct Estimate {
-  Pose2 pose;                            ///< best pose after sub-cell refinement, world frame
-  Pose2 lattice_pose;                    ///< the search's exact winner on the lattice, world frame
-  double score = 0.0;                    ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
-  double normalized_score = 0.0;         ///< score / sum |L|: 1 when every local cell matches fully
-  double second_score = 0.0;             ///< best score of a pose distinct from the winner
-  double confidence = 0.0;               ///< (score - second_score) / score, clamped to [0, 1]
+  Pose2 pose;                     ///< best pose after sub-cell refinement, world frame
+  Pose2 lattice_pose;             ///< the search's exact winner on the lattice, world frame
+  double score = 0.0;             ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
+  double normalized_score = 0.0;  ///< score / sum |L|: 1 when every local cell matches fully
+  double second_score = 0.0;      ///< best score of a pose distinct from the winner
+  /// In [0, 1]: agreement * fit * distinctness * sharpness (ConfidenceParts).
+  double confidence = 0.0;
+  ConfidenceParts confidence_parts;
+  /// A hypothesis far from the winner (VerdictOptions) scores nearly as much.
+  bool ambiguous = false;
+  Verdict verdict = Verdict::NotLocalized;
   std::vector<Hypothesis> alternatives;  ///< distinct local maxima, best first (winner included)
+  /// The lattice winner lies on the window's edge (x, y or heading; not where the window
+  /// was clipped to the map, nor in heading when the window covers every heading): the
+  /// best pose may lie outside the window, a sign of a wrong prior.
+  bool on_window_edge = false;
+  /// Sonar ring: the share of readings the known map explains at `pose` (a noise-free
+  /// simulated reading within 10 cm + 5 % of the measured one, or both no echo). NaN for
+  /// scans.
+  double agreement = 0.0;
   /// Covariance of (x, y, theta) in the world frame (m^2, m rad, rad^2), from the scores
   /// around the lattice winner read as a likelihood (see PeakCovariance in the README);
   /// zero when not computed (CorrelationOptions::covariance off).

@@ -19,6 +19,17 @@ struct EvalConfiguration {
   GlobalModel global = GlobalModel::Thinned;
 };
 
+/// The failure-provoking protocol of `gridloc eval --noisy`: each trial draws what can go
+/// wrong, so that the confidence can be judged on failures (issue 4's calibration).
+struct NoisyProtocol {
+  bool enabled = false;
+  /// Sensor noise: 3 cm + 2 % Gaussian, 5 % dropouts, specular loss beyond 60 deg of
+  /// incidence, 5 % crosstalk (replaces EvalOptions::noise).
+  SonarSimOptions noise = SonarSimOptions::harsh(1);
+  double wrong_prior_prob = 0.15;  ///< the prior lies 1.5-3 window half-sizes off the truth
+  double furniture_prob = 0.25;    ///< the world gains 2-4 boxes the map does not have
+};
+
 struct EvalOptions {
   int trials = 100;  ///< per map
   std::uint64_t seed = 1;
@@ -28,6 +39,7 @@ struct EvalOptions {
   double success_theta = 0.122173047640;                  ///< 7 deg
   SonarSimOptions noise = SonarSimOptions::realistic(1);  ///< its seed is replaced per trial
   CorrelationOptions search;  ///< its local/global fields are replaced per configuration
+  NoisyProtocol noisy;        ///< when enabled, replaces `noise` and adds failures
   std::vector<EvalConfiguration> configurations = {{LocalModel::Turned, GlobalModel::Raw},
                                                    {LocalModel::Turned, GlobalModel::Thinned},
                                                    {LocalModel::Oriented, GlobalModel::Raw},
@@ -47,12 +59,47 @@ struct ConfigurationResult {
   double mean_position_error_m = 0.0;   ///< over all trials
   double mean_heading_error_deg = 0.0;  ///< over all trials
   double median_ms = 0.0;               ///< estimate() wall time
+  /// How well Estimate::confidence separates successes from failures: the probability that a
+  /// random success has a higher confidence than a random failure (ties count half); NaN
+  /// without both successes and failures.
+  double auroc = 0.0;
+  /// The share of failures whose confidence lies below the threshold that keeps 95 % of
+  /// the successes (their 5th percentile); NaN without both.
+  double failures_flagged_at_95_recall = 0.0;
+};
+
+/// One trial of one configuration, for calibration studies (`gridloc eval --trials-out`).
+struct TrialRecord {
+  std::string map;
+  int trial = 0;
+  std::size_t configuration = 0;  ///< index into EvalOptions::configurations
+  bool success = false;
+  bool wrong_prior = false;  ///< the noisy protocol put the prior off (truth outside the window)
+  bool furniture = false;    ///< the noisy protocol changed the world
+  double position_error_m = 0.0;
+  double heading_error_deg = 0.0;
+  Estimate estimate;
 };
 
 struct EvalReport {
   int trials = 0;  ///< over all maps
   std::vector<ConfigurationResult> configurations;
+  std::vector<TrialRecord> records;  ///< every trial of every configuration, in run order
 };
+
+/// The AUROC of `scores` for telling positives from negatives (Mann-Whitney; ties count
+/// half); NaN when either group is empty.
+double auroc(const std::vector<double>& positives, const std::vector<double>& negatives);
+
+/// The share of `negatives` strictly below the `recall` quantile of `positives` (the highest
+/// threshold that keeps at least `recall` of the positives at or above it); NaN when either
+/// group is empty.
+double flagged_at_recall(const std::vector<double>& positives, const std::vector<double>& negatives,
+                         double recall);
+
+/// `map` with 2-4 boxes (0.3-0.8 m) added on free cells at least `keep_clear` m from
+/// `keep`: furniture the known map does not have.
+OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double keep_clear, Rng& rng);
 
 /// Draws a pose uniformly in the map whose footprint, grown by `clearance`, covers only free
 /// cells. Throws gridloc::Error when none is found in many attempts.

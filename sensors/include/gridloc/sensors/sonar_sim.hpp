@@ -23,6 +23,9 @@ struct SonarSimOptions {
   /// Noise we use as "realistic" in the evaluation: 2 cm + 1 % range noise, 2 % dropouts,
   /// specular loss beyond 75 degrees of incidence, 1 % crosstalk.
   static SonarSimOptions realistic(std::uint64_t seed);
+  /// Noise strong enough to make the matcher fail now and then: 3 cm + 2 % range noise, 5 %
+  /// dropouts, specular loss beyond 60 degrees, 5 % crosstalk.
+  static SonarSimOptions harsh(std::uint64_t seed);
 };
 
 /// Simulates one reading per sonar of `ring` for a robot at world pose `pose` on `map`.
