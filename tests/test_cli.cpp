@@ -1,7 +1,6 @@
 // End-to-end tests of the gridloc command-line tool (examples/gridloc_cli): simulate ->
 // localize round trip, eval JSON, and the one-line error contract (stderr, exit code 2).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "gridloc/engine/evaluation.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
@@ -24,56 +24,12 @@ namespace {
 
 using test::TempDir;
 
-struct CliRun {
-  int status = -1;  ///< exit status, or -1 if the process did not exit normally
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-/// Runs the gridloc binary with `args` (already quoted where needed), capturing both streams.
-CliRun run_cli(const TempDir& dir, const std::string& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd =
-      quote(GRIDLOC_CLI_PATH) + " " + args + " >" + quote(out) + " 2>" + quote(err);
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-std::vector<std::string> lines(const std::string& s) {
-  std::vector<std::string> v;
-  std::stringstream ss(s);
-  std::string line;
-  while (std::getline(ss, line)) v.push_back(line);
-  return v;
-}
-
-/// Expects exit status 2, nothing on stdout, and exactly one stderr line starting with
-/// "gridloc: error:" and containing `part`.
-void expect_cli_error(const CliRun& r, const std::string& part) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.out, "");
-  const auto l = lines(r.err);
-  ASSERT_EQ(l.size(), 1u) << "stderr: " << r.err;
-  EXPECT_EQ(l[0].rfind("gridloc: error:", 0), 0u) << l[0];
-  EXPECT_NE(l[0].find(part), std::string::npos) << "'" << l[0] << "' lacks '" << part << "'";
-}
+using test::CliRun;
+using test::expect_cli_error;
+using test::lines;
+using test::quote;
+using test::read_file;
+using test::run_cli;
 
 class Cli : public ::testing::Test {
  protected:

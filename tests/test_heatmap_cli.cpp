@@ -2,7 +2,6 @@
 // expected size and non-trivial content, the .npy volume matches volume.json and the
 // estimate, and bad input is one error line with exit status 2.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +19,7 @@
 #include <tuple>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "test_support.hpp"
 
@@ -28,49 +28,11 @@ namespace {
 
 using test::TempDir;
 
-// The helpers of test_cli.cpp, which the two files do not share.
-struct CliRun {
-  int status = -1;  ///< exit status, or -1 if the process did not exit normally
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-CliRun run_cli(const TempDir& dir, const std::string& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd =
-      quote(GRIDLOC_CLI_PATH) + " " + args + " >" + quote(out) + " 2>" + quote(err);
-  const int raw = std::system(cmd.c_str());
-  CliRun r;
-  r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-/// Expects exit status 2, nothing on stdout, one stderr line "gridloc: error: ..." holding
-/// every one of `parts`.
-void expect_cli_error(const CliRun& r, std::initializer_list<std::string> parts) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.out, "");
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
-  for (const auto& part : parts) {
-    EXPECT_NE(r.err.find(part), std::string::npos) << "'" << r.err << "' lacks '" << part << "'";
-  }
-}
+using test::CliRun;
+using test::expect_cli_error;
+using test::quote;
+using test::read_file;
+using test::run_cli;
 
 /// A NumPy .npy file: shape and float32 data.
 struct Npy {
