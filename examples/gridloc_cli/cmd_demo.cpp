@@ -17,10 +17,11 @@ struct DemoArgs {
   std::string map, ring;
   std::uint64_t seed = 7;
   bool json = false;
+  OctomapArgs octomap;
 };
 
 void run(const DemoArgs& a) {
-  const OccupancyMap map = load_ros_map(a.map);
+  const OccupancyMap map = load_map(a.map, a.octomap.slice);
   const SonarRing ring = load_sonar_ring(a.ring);
   Rng rng(a.seed);
   const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
@@ -78,7 +79,8 @@ void add_demo(CLI::App& app) {
   a->map = data_dir() + "/room_furnished.yaml";
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("demo", "Simulate, perturb the prior, localize, report");
-  cmd->add_option("--map", a->map, "map_server YAML")->capture_default_str();
+  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot)")->capture_default_str();
+  a->octomap.add_to(cmd);
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--seed", a->seed, "seed of pose, prior and noise")->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON instead of text");

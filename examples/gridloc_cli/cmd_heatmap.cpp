@@ -39,6 +39,7 @@ struct HeatmapArgs {
   double max_range = 8.0;
   std::string local = "oriented", global = "thinned";
   SearchArgs search;
+  OctomapArgs octomap;
   SearchWindow window;
   int levels = 3;
   bool whole_map = false;         // --global
@@ -196,8 +197,8 @@ void run(const HeatmapArgs& a) {
   o.levels = a.levels;
   o.reach_m = obs.scan ? a.max_range : 0.0;
   const CorrelationEstimator estimator =
-      obs.scan ? CorrelationEstimator(load_ros_map(a.map), o)
-               : CorrelationEstimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
+      obs.scan ? CorrelationEstimator(load_map(a.map, a.octomap.slice), o)
+               : CorrelationEstimator(load_map(a.map, a.octomap.slice), load_sonar_ring(a.ring), o);
   SearchWindow window = a.window;
   if (a.whole_map) {
     window = estimator.global_window(obs);
@@ -275,7 +276,9 @@ void add_heatmap(CLI::App& app) {
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand(
       "heatmap", "Score volume of a localization as images (PNG) and a NumPy file, for tuning");
-  cmd->add_option("--map", a->map, "map_server YAML of the known map")->required();
+  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot) of the known map")
+      ->required();
+  a->octomap.add_to(cmd);
   cmd->add_option("--out", a->out, "folder for the images and files (created if missing)")
       ->required();
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();

@@ -20,6 +20,7 @@ struct LocalizeArgs {
   double max_range = 8.0;
   std::string local = "oriented", global = "thinned";
   SearchArgs search;
+  OctomapArgs octomap;
   SearchWindow window;
   int levels = 3;
   int repeat = 1;
@@ -52,8 +53,8 @@ void run(const LocalizeArgs& a) {
   // A scan needs no ring: the padding covers its max range instead.
   o.reach_m = obs.scan ? a.max_range : 0.0;
   const CorrelationEstimator estimator =
-      obs.scan ? CorrelationEstimator(load_ros_map(a.map), o)
-               : CorrelationEstimator(load_ros_map(a.map), load_sonar_ring(a.ring), o);
+      obs.scan ? CorrelationEstimator(load_map(a.map, a.octomap.slice), o)
+               : CorrelationEstimator(load_map(a.map, a.octomap.slice), load_sonar_ring(a.ring), o);
   const double precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
 
   if (a.whole_map) {
@@ -90,7 +91,9 @@ void add_localize(CLI::App& app) {
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd =
       app.add_subcommand("localize", "Localize from sonar readings and a prior; prints JSON");
-  cmd->add_option("--map", a->map, "map_server YAML of the known map")->required();
+  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot) of the known map")
+      ->required();
+  a->octomap.add_to(cmd);
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--readings", a->readings, "sonar readings JSON {\"ranges_m\": [...]}");
   cmd->add_option("--scan", a->scan, "laser/IR scan CSV: angle_rad,range_m per line");

@@ -16,13 +16,15 @@ struct SimulateArgs {
   std::string map, ring, pose, out;
   bool realistic = false;
   SonarSimOptions sim;
+  OctomapArgs octomap;
 };
 
 void run(const SimulateArgs& a) {
   const Pose2 pose = parse_pose(a.pose, "--pose");
   SonarSimOptions o = a.sim;
   if (a.realistic) o = SonarSimOptions::realistic(a.sim.seed);
-  const auto ranges = simulate_sonar(load_ros_map(a.map), load_sonar_ring(a.ring), pose, o);
+  const auto ranges =
+      simulate_sonar(load_map(a.map, a.octomap.slice), load_sonar_ring(a.ring), pose, o);
   const nlohmann::json j = {{"pose", to_json(pose)}, {"ranges_m", ranges}};
   if (a.out.empty()) {
     std::cout << j.dump(2) << "\n";
@@ -39,7 +41,8 @@ void add_simulate(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("simulate", "Simulate sonar readings at a pose; prints JSON");
-  cmd->add_option("--map", a->map, "map_server YAML")->required();
+  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot)")->required();
+  a->octomap.add_to(cmd);
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--pose", a->pose, "robot pose x,y,theta (m, m, rad)")->required();
   cmd->add_option("--out", a->out, "write the readings here instead of stdout");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
 
 namespace gridloc::cli {
 
@@ -139,6 +140,20 @@ void SearchArgs::apply(CorrelationOptions& o) const {
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));
   }
+}
+
+void OctomapArgs::add_to(CLI::App* cmd) {
+  cmd->add_option("--octomap-z-min", slice.z_min,
+                  "OctoMap map (.bt/.ot): lower edge of the height band sliced into the 2-D map "
+                  "(m)")
+      ->capture_default_str();
+  cmd->add_option("--octomap-z-max", slice.z_max,
+                  "OctoMap map (.bt/.ot): upper edge of the height band (m)")
+      ->capture_default_str();
+}
+
+OccupancyMap load_map(const std::string& path, const OctomapSlice& slice) {
+  return is_octomap_path(path) ? load_octomap(path, slice) : load_ros_map(path);
 }
 
 std::string data_dir() {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/grids/octomap_io.hpp"
 
 namespace gridloc::cli {
 
@@ -40,6 +41,18 @@ struct SearchArgs {
   /// Parses and checks them into `o`; throws gridloc::Error naming the option.
   void apply(CorrelationOptions& o) const;
 };
+
+/// The height band of an OctoMap map: --octomap-z-min, --octomap-z-max (m); used only when
+/// the map is a .bt/.ot file.
+struct OctomapArgs {
+  OctomapSlice slice;
+  /// Adds --octomap-z-min and --octomap-z-max.
+  void add_to(CLI::App* cmd);
+};
+
+/// Loads a map by its extension: an OctoMap tree (.bt, .ot) sliced to the band of `slice`
+/// (load_octomap), otherwise a map_server YAML (load_ros_map).
+OccupancyMap load_map(const std::string& path, const OctomapSlice& slice = {});
 
 /// Folder of the bundled maps: $GRIDLOC_DATA_DIR, else the source tree's maps/, else the
 /// installed share/gridloc/maps.

@@ -1,0 +1,243 @@
+#include "gridloc/grids/octomap_io.hpp"
+
+#include <octomap/AbstractOcTree.h>
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The first line of each kind of OctoMap file (octomap's AbstractOcTree / AbstractOccupancyOcTree).
+constexpr const char* kBinaryHeader = "# Octomap OcTree binary file";
+constexpr const char* kFullHeader = "# Octomap OcTree file";
+// Largest 2-D map produced (cells): a guard against a tiny resolution on a large tree.
+constexpr double kMaxCells = 1e8;
+// Tolerance, in leaf or cell units, for comparing voxel faces with band edges and cell edges
+// (voxel faces are integer multiples of the leaf size; band edges are decimal numbers).
+constexpr double kEps = 1e-6;
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+  throw Error(file + ": " + what);
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+void check_slice(const std::string& path, const OctomapSlice& s) {
+  if (std::isnan(s.z_min) || std::isnan(s.z_max)) {
+    fail(path, "OctoMap band z_min/z_max must be numbers, got z_min " + num(s.z_min) + ", z_max " +
+                   num(s.z_max));
+  }
+  if (!(s.z_min < s.z_max)) {
+    fail(path, "OctoMap band: z_min (" + num(s.z_min) + " m) must be below z_max (" + num(s.z_max) +
+                   " m)");
+  }
+  if (!(s.resolution >= 0.0) || !std::isfinite(s.resolution)) {
+    fail(path, "OctoMap slice resolution must be positive when given (0 = the tree's), got " +
+                   num(s.resolution));
+  }
+}
+
+// Holds what octomap writes to std::cerr while alive (its progress notes, "Reading binary
+// octree type OcTree", and its OCTOMAP_ERROR_STR errors, which go into our message instead).
+// A few of octomap's errors use fprintf(stderr) and still reach the console (a truncated .bt:
+// "Tree size mismatch"). std::cerr is process-wide: other threads' output during a read lands
+// here too and is dropped.
+class CerrCapture {
+ public:
+  CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
+  ~CerrCapture() { std::cerr.rdbuf(old_); }
+  CerrCapture(const CerrCapture&) = delete;
+  CerrCapture& operator=(const CerrCapture&) = delete;
+  /// octomap's "ERROR: ..." lines, joined, or "" if none.
+  std::string errors() const {
+    std::istringstream in(text_.str());
+    std::string line, out;
+    while (std::getline(in, line)) {
+      if (line.rfind("ERROR: ", 0) != 0) continue;
+      out += (out.empty() ? "" : "; ") + line.substr(7);
+    }
+    return out;
+  }
+
+ private:
+  std::ostringstream text_;
+  std::streambuf* old_;
+};
+
+std::string octomap_says(const CerrCapture& capture) {
+  const std::string e = capture.errors();
+  return e.empty() ? "" : " (octomap: " + e + ")";
+}
+
+// Reads the tree; its kind is told by the extension and checked against the first line, so
+// that a wrong file gets our message rather than octomap's console output.
+std::unique_ptr<octomap::OcTree> read_tree(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".bt" && ext != ".ot") {
+    fail(path,
+         "an OctoMap file must end in .bt (binary tree) or .ot (full tree), not '" + ext + "'");
+  }
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "OctoMap file not found");
+  if (!fs::is_regular_file(path, ec)) fail(path, "not a regular file (an OctoMap .bt/.ot file)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the OctoMap file for reading");
+  std::string first;
+  std::getline(in, first);
+  const bool binary = ext == ".bt";
+  const std::string header = binary ? kBinaryHeader : kFullHeader;
+  if (first.rfind(header, 0) != 0) {
+    fail(path, std::string("not an OctoMap ") + (binary ? "binary (.bt)" : "full (.ot)") +
+                   " file: the first line is not '" + header + "'");
+  }
+  in.clear();
+  in.seekg(0);
+
+  CerrCapture capture;
+  if (binary) {
+    auto tree = std::make_unique<octomap::OcTree>(0.1);  // readBinary sets the resolution
+    if (!tree->readBinary(in)) {
+      fail(path, "malformed or truncated OctoMap binary tree" + octomap_says(capture));
+    }
+    return tree;
+  }
+  std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(in));
+  if (!tree) {
+    fail(path, "malformed or truncated OctoMap tree, or a tree type octomap lacks" +
+                   octomap_says(capture));
+  }
+  auto* octree = dynamic_cast<octomap::OcTree*>(tree.get());
+  if (!octree) fail(path, "holds an OctoMap " + tree->getTreeType() + ", not an OcTree");
+  tree.release();
+  return std::unique_ptr<octomap::OcTree>(octree);
+}
+
+// A leaf voxel as a box of leaf-index units: [lo, hi) per axis, faces at index x resolution.
+struct VoxelBox {
+  std::array<std::int64_t, 3> lo{}, hi{};
+};
+
+template <typename LeafIterator>
+VoxelBox box_of(const LeafIterator& it, double resolution) {
+  // A pruned leaf of depth d spans 2^(16 - d) leaves; its centre is a float, so snap the
+  // faces to the leaf lattice.
+  const double half = 0.5 * static_cast<double>(std::llround(it.getSize() / resolution));
+  const octomap::point3d c = it.getCoordinate();
+  VoxelBox b;
+  for (int i = 0; i < 3; ++i) {
+    const double centre = static_cast<double>(c(i)) / resolution;
+    b.lo[i] = std::llround(centre - half);
+    b.hi[i] = std::llround(centre + half);
+  }
+  return b;
+}
+
+}  // namespace
+
+bool is_octomap_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".bt" || ext == ".ot";
+}
+
+OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice) {
+  check_slice(path, slice);
+  const std::unique_ptr<octomap::OcTree> tree = read_tree(path);
+  if (tree->size() == 0 || tree->getNumLeafNodes() == 0) fail(path, "the OctoMap tree is empty");
+  const double res = tree->getResolution();
+
+  // Pass 1: the bounding box of every known voxel, and whether any overlaps the band.
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  std::array<std::int64_t, 3> lo{kMax, kMax, kMax}, hi{-kMax, -kMax, -kMax};
+  const double band_lo = slice.z_min / res, band_hi = slice.z_max / res;  // leaf units
+  const auto in_band = [&](const VoxelBox& b) {
+    return static_cast<double>(b.lo[2])<band_hi - kEps&& static_cast<double>(b.hi[2])> band_lo +
+           kEps;
+  };
+  bool any_in_band = false;
+  for (auto it = tree->begin_leafs(), end = tree->end_leafs(); it != end; ++it) {
+    const VoxelBox b = box_of(it, res);
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], b.lo[i]);
+      hi[i] = std::max(hi[i], b.hi[i]);
+    }
+    any_in_band = any_in_band || in_band(b);
+  }
+  if (!any_in_band) {
+    fail(path, "no known voxel overlaps the band z in [" + num(slice.z_min) + ", " +
+                   num(slice.z_max) + "] m (the tree's voxels span z in [" +
+                   num(static_cast<double>(lo[2]) * res) + ", " +
+                   num(static_cast<double>(hi[2]) * res) + "] m)");
+  }
+
+  // The 2-D geometry: the x-y box, cut into cells of the requested side.
+  const double cell = slice.resolution > 0.0 ? slice.resolution : res;
+  const double scale = res / cell;  // cells per leaf unit
+  GridGeometry g;
+  g.resolution = cell;
+  g.origin = {static_cast<double>(lo[0]) * res, static_cast<double>(lo[1]) * res};
+  g.yaw = 0.0;
+  const double w = std::max(1.0, std::ceil(static_cast<double>(hi[0] - lo[0]) * scale - kEps));
+  const double h = std::max(1.0, std::ceil(static_cast<double>(hi[1] - lo[1]) * scale - kEps));
+  if (w * h > kMaxCells) {
+    fail(path, "the 2-D map would have " + num(w * h) + " cells (" + num(w) + " x " + num(h) +
+                   " at " + num(cell) + " m); use a coarser resolution");
+  }
+  g.width = static_cast<int>(w);
+  g.height = static_cast<int>(h);
+  OccupancyMap map(g, CellState::Unknown);
+
+  // Cells [first, last) covered by the leaf-unit interval [a, b) along one axis.
+  const auto cells_of = [&](std::int64_t a, std::int64_t b, std::int64_t origin, int size) {
+    int first = static_cast<int>(std::floor(static_cast<double>(a - origin) * scale + kEps));
+    int last = static_cast<int>(std::ceil(static_cast<double>(b - origin) * scale - kEps));
+    last = std::max(last, first + 1);
+    return std::array<int, 2>{std::clamp(first, 0, size), std::clamp(last, 0, size)};
+  };
+
+  // Pass 2: paint the band's voxels; occupied wins over free, free over unknown.
+  for (auto it = tree->begin_leafs(), end = tree->end_leafs(); it != end; ++it) {
+    const VoxelBox b = box_of(it, res);
+    if (!in_band(b)) continue;
+    const bool occupied = tree->isNodeOccupied(*it);
+    const auto xs = cells_of(b.lo[0], b.hi[0], lo[0], g.width);
+    const auto ys = cells_of(b.lo[1], b.hi[1], lo[1], g.height);
+    for (int iy = ys[0]; iy < ys[1]; ++iy) {
+      CellState* row = map.row(iy);
+      for (int ix = xs[0]; ix < xs[1]; ++ix) {
+        if (occupied) {
+          row[ix] = CellState::Occupied;
+        } else if (row[ix] == CellState::Unknown) {
+          row[ix] = CellState::Free;
+        }
+      }
+    }
+  }
+  return map;
+}
+
+}  // namespace gridloc
