@@ -114,12 +114,16 @@ void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
 }
 
 /// Estimate::agreement: the share of `ranges` that a noise-free simulation on `map` at
-/// `pose` reproduces within 10 cm + 5 % (or both without echo).
+/// `pose` reproduces within 10 cm + 5 % (or both without echo); sonars flagged in `rejected`
+/// are left out.
 double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
-                         const std::vector<double>& ranges, const Pose2& pose) {
+                         const std::vector<double>& ranges, const std::vector<bool>& rejected,
+                         const Pose2& pose) {
   const std::vector<double> expected = simulate_sonar(map, ring, pose);
-  int agree = 0;
+  int agree = 0, used = 0;
   for (std::size_t i = 0; i < ranges.size(); ++i) {
+    if (i < rejected.size() && rejected[i]) continue;
+    ++used;
     const double limit = ring.sonars[i].max_range;
     const bool none = ranges[i] >= limit, none_expected = expected[i] >= limit;
     if (none && none_expected) {
@@ -129,7 +133,7 @@ double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
       ++agree;
     }
   }
-  return ranges.empty() ? 0.0 : static_cast<double>(agree) / static_cast<double>(ranges.size());
+  return used == 0 ? 0.0 : static_cast<double>(agree) / static_cast<double>(used);
 }
 
 }  // namespace
@@ -248,6 +252,9 @@ Lattice CorrelationEstimator::lattice_for(const Observation& observation,
     if (!observation.ranges.empty()) {
       throw Error("observation: give sonar ranges or a scan, not both");
     }
+    if (!observation.rejected.empty()) {
+      throw Error("observation: a rejection mask is for sonar readings, not for a scan");
+    }
     validate(*observation.scan);
     if (observation.scan->max_range > reach_ + 1e-9) {
       std::ostringstream m;
@@ -258,7 +265,7 @@ Lattice CorrelationEstimator::lattice_for(const Observation& observation,
   } else {
     if (ring_.sonars.empty())
       throw Error("observation: this estimator has no sonar ring; give a scan");
-    validate_readings(ring_, observation.ranges);
+    validate_readings(ring_, observation.ranges, observation.rejected);
   }
   validate(window);
   const double res = options_.resolution;
@@ -368,7 +375,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   }
   e.score = r.best.score;
   e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
-                                 : reading_agreement(map_, ring_, observation.ranges, e.pose);
+                                 : reading_agreement(map_, ring_, observation.ranges,
+                                                     observation.rejected, e.pose);
   {
     const double span = 2.0 * window.half_xy / res;  // the unclipped window, in cells
     const Pose2 prior = map_.geometry.to_grid_frame(window.center);
@@ -498,7 +506,7 @@ SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation,
     return rasterize_scan(*observation.scan, theta, resolution, centre, options_.scan);
   }
   return rasterize(ring_, observation.ranges, theta, resolution, options_.local, centre,
-                   options_.sonar);
+                   options_.sonar, observation.rejected);
 }
 
 SearchWindow CorrelationEstimator::global_window(const Observation& observation) const {

@@ -137,6 +137,13 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
                           const std::function<void(int, int)>& progress) {
   if (options.trials < 1) throw Error("evaluation: trials must be >= 1");
   if (maps.empty()) throw Error("evaluation: no maps");
+  if (options.echo_filter) {
+    validate(*options.echo_filter);
+    if (options.echo_firings < 2) {
+      throw Error("evaluation: echo_firings must be >= 2, got " +
+                  std::to_string(options.echo_firings));
+    }
+  }
   const std::size_t nc = options.configurations.size();
   std::vector<std::vector<double>> pos_err(nc), head_err(nc), ms(nc);
   std::vector<int> successes(nc, 0);
@@ -171,7 +178,24 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
         changed = add_furniture(maps[m].map, truth, footprint_radius + 0.3, rng);
         world = &changed;
       }
-      const Observation obs{simulate_sonar(*world, ring, truth, noise)};
+      Observation obs{simulate_sonar(*world, ring, truth, noise)};
+      int rejected_sonars = 0;
+      if (options.echo_filter) {
+        // Consecutive firings from the same pose: the first is the unfiltered protocol's
+        // reading, the others draw from seeds derived from it (not from `rng`, so that poses
+        // and priors stay those of the unfiltered protocol).
+        std::vector<std::vector<double>> firings{obs.ranges};
+        for (int k = 1; k < options.echo_firings; ++k) {
+          SonarSimOptions again = noise;
+          again.seed = mix(noise.seed, static_cast<std::uint64_t>(k));
+          firings.push_back(simulate_sonar(*world, ring, truth, again));
+        }
+        FilteredReadings filtered = filter_echoes(ring, firings, *options.echo_filter);
+        obs.ranges = std::move(filtered.ranges);
+        obs.rejected = std::move(filtered.rejected);
+        rejected_sonars = filtered.rejected_count;
+      }
+      const bool all_rejected = rejected_sonars == static_cast<int>(ring.sonars.size());
       SearchWindow window = options.window;
       window.center = {
           truth.x + rng.uniform(-window.half_xy, window.half_xy),
@@ -194,7 +218,12 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
       window.center = geo.to_world_frame(clamped);
 
       for (std::size_t c = 0; c < nc; ++c) {
-        const Estimate e = estimators[c]->estimate(obs, window);
+        Estimate e;
+        if (all_rejected) {  // nothing to localize with: a failure at the prior, no confidence
+          e.pose = e.lattice_pose = window.center;
+        } else {
+          e = estimators[c]->estimate(obs, window);
+        }
         const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
         const double dt = std::abs(normalize_angle(e.pose.theta - truth.theta));
         pos_err[c].push_back(dp);
@@ -202,8 +231,8 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
         ms[c].push_back(e.stats.elapsed_ms);
         const bool success = dp <= options.success_xy && dt <= options.success_theta;
         if (success) ++successes[c];
-        report.records.push_back(
-            {maps[m].name, t, c, success, wrong_prior, furniture, dp, rad2deg(dt), e});
+        report.records.push_back({maps[m].name, t, c, success, wrong_prior, furniture, dp,
+                                  rad2deg(dt), e, rejected_sonars});
       }
       if (progress) progress(++done, total);
     }

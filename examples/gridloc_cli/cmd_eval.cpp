@@ -18,11 +18,13 @@ namespace {
 struct EvalArgs {
   std::string maps, ring, noise = "realistic";
   SearchArgs search;
+  OctomapArgs octomap;
   int trials = 100;
   std::uint64_t seed = 1;
   bool json = false;
   bool quiet = false;
   bool noisy = false;
+  bool echo_filter = false;
   std::string trials_out;
 };
 
@@ -37,7 +39,7 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
   if (!out) throw Error("--trials-out: cannot write " + path);
   out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
          "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
-         "std_theta,on_window_edge,agreement\n";
+         "std_theta,on_window_edge,agreement,rejected_sonars\n";
   for (const TrialRecord& r : report.records) {
     const EvalConfiguration& c = o.configurations[r.configuration];
     const Estimate& e = r.estimate;
@@ -46,7 +48,7 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
         << ',' << r.heading_error_deg << ',' << e.score << ',' << e.normalized_score << ','
         << e.second_score << ',' << e.confidence << ',' << std::sqrt(e.covariance(0, 0)) << ','
         << std::sqrt(e.covariance(1, 1)) << ',' << std::sqrt(e.covariance(2, 2)) << ','
-        << e.on_window_edge << ',' << e.agreement << '\n';
+        << e.on_window_edge << ',' << e.agreement << ',' << r.rejected_sonars << '\n';
   }
   if (!out) throw Error("--trials-out: writing " + path + " failed");
 }
@@ -72,14 +74,16 @@ void run(const EvalArgs& a) {
     throw Error("--noise must be realistic or none, not '" + a.noise + "'");
   }
   o.noisy.enabled = a.noisy;
+  if (a.echo_filter) o.echo_filter = EchoFilterOptions{};
   std::vector<EvalMap> maps;
   for (const auto& path : split(a.maps)) {
     // A bare name means a bundled map.
-    const std::string file =
-        path.find('/') == std::string::npos && path.find(".yaml") == std::string::npos
-            ? data_dir() + "/" + path + ".yaml"
-            : path;
-    maps.push_back({file, load_ros_map(file)});
+    const std::string file = path.find('/') == std::string::npos &&
+                                     path.find(".yaml") == std::string::npos &&
+                                     !is_octomap_path(path)
+                                 ? data_dir() + "/" + path + ".yaml"
+                                 : path;
+    maps.push_back({file, load_map(file, a.octomap.slice)});
   }
   if (maps.empty()) throw Error("--maps names no map");
   const SonarRing ring = load_sonar_ring(a.ring);
@@ -92,6 +96,12 @@ void run(const EvalArgs& a) {
   });
 
   if (!a.trials_out.empty()) write_trials(a.trials_out, report, o);
+  // Sonars the echo filter rejected, per trial (each trial's readings serve every configuration).
+  double rejected_per_trial = 0.0;
+  for (const TrialRecord& r : report.records) {
+    if (r.configuration == 0) rejected_per_trial += r.rejected_sonars;
+  }
+  rejected_per_trial /= report.trials;
   if (a.json) {
     nlohmann::json configs = nlohmann::json::array();
     for (const auto& c : report.configurations) {
@@ -114,6 +124,8 @@ void run(const EvalArgs& a) {
                                 {"strategy", a.search.strategy},
                                 {"noise", a.noisy ? "noisy" : a.noise},
                                 {"noisy", a.noisy},
+                                {"echo_filter", a.echo_filter},
+                                {"echo_filter_rejected_per_trial", rejected_per_trial},
                                 {"arc_rule", a.search.arc_rule},
                                 {"arc_depth_cells", a.search.arc_depth},
                                 {"configurations", configs}}
@@ -121,12 +133,17 @@ void run(const EvalArgs& a) {
               << "\n";
     return;
   }
+  char filter[96] = "echo filter off";
+  if (a.echo_filter) {
+    std::snprintf(filter, sizeof filter, "echo filter on (%d firings, %.2f of %zu sonars rejected)",
+                  o.echo_firings, rejected_per_trial, ring.sonars.size());
+  }
   std::printf(
       "seed 001 protocol%s: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
-      "depth %.2g cells\n",
+      "depth %.2g cells, %s\n",
       a.noisy ? " (noisy: harsh noise, wrong priors, furniture)" : "", report.trials, maps.size(),
       static_cast<unsigned long long>(a.seed), a.search.strategy.c_str(),
-      a.noisy ? "harsh" : a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth);
+      a.noisy ? "harsh" : a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth, filter);
   std::printf("%-9s %-8s %9s %14s %16s %10s %7s %9s\n", "local", "global", "success",
               "mean pos err", "mean head err", "median", "AUROC", "flagged");
   auto percent_or_dash = [](double v, double scale) {
@@ -154,8 +171,10 @@ void add_eval(CLI::App& app) {
   a->maps = "room_rect,room_l,room_furnished";
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
-  cmd->add_option("--maps", a->maps, "comma-separated bundled map names or YAML paths")
+  cmd->add_option("--maps", a->maps,
+                  "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths")
       ->capture_default_str();
+  a->octomap.add_to(cmd);
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
   cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
@@ -166,6 +185,9 @@ void add_eval(CLI::App& app) {
   cmd->add_flag("--noisy", a->noisy,
                 "the calibration protocol: harsh noise (3 cm + 2 %, 5 % dropouts and "
                 "crosstalk, specular beyond 60 deg), 15 % wrong priors, 25 % furniture changes");
+  cmd->add_flag("--echo-filter", a->echo_filter,
+                "fire the ring 3 times per trial and reject sonars whose echoes disagree "
+                "(EERUF-like; a rejected sonar adds nothing to the local grid)");
   cmd->add_option("--trials-out", a->trials_out,
                   "write every trial (errors, scores, confidence, std) to this CSV");
   cmd->callback([a] { run(*a); });

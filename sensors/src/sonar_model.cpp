@@ -109,13 +109,17 @@ void check_resolution(double resolution) {
 
 SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
                                    double theta, double resolution, const Eigen::Vector2d& centre,
-                                   const SonarModelOptions& options) {
+                                   const SonarModelOptions& options,
+                                   const std::vector<bool>& rejected) {
   check_resolution(resolution);
+  std::size_t active = 0;  // sonars that draw a cone: the footprint's N
   Canvas& canvas = Canvas::for_this_thread(
       static_cast<int>(std::ceil((ring.reach() + 2 * resolution + centre.norm()) / resolution)) + 2,
       resolution);
   for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
+    if (i < rejected.size() && rejected[i]) continue;  // an echo filter rejected it: no evidence
     add_cone(canvas, ring.sonars[i], ranges[i], theta, centre, options);
+    ++active;
   }
   // Footprint: its n cells share -N/n, overriding the cones (the robot stands there).
   if (ring.footprint.polygon.size() >= 3) {
@@ -133,7 +137,7 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
         if (footprint_contains(ring.footprint, p)) cells.push_back(canvas.index_of_cell(cx, cy));
       }
     }
-    const float v = -static_cast<float>(ring.sonars.size()) / static_cast<float>(cells.size());
+    const float v = -static_cast<float>(active) / static_cast<float>(cells.size());
     for (int idx : cells) {
       canvas.set(idx, 0.0f, v);
     }
@@ -143,9 +147,10 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
 
 SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double>& ranges,
                                  double theta, double resolution, const Eigen::Vector2d& centre,
-                                 const SonarModelOptions& options) {
+                                 const SonarModelOptions& options,
+                                 const std::vector<bool>& rejected) {
   const SparseLocalGrid upright =
-      rasterize_oriented(ring, ranges, 0.0, resolution, Eigen::Vector2d::Zero(), options);
+      rasterize_oriented(ring, ranges, 0.0, resolution, Eigen::Vector2d::Zero(), options, rejected);
   Canvas& canvas = Canvas::for_this_thread(
       static_cast<int>(std::ceil((ring.reach() + 3 * resolution + centre.norm()) / resolution)) + 2,
       resolution);
@@ -162,10 +167,10 @@ SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double
 
 SparseLocalGrid rasterize(const SonarRing& ring, const std::vector<double>& ranges, double theta,
                           double resolution, LocalModel model, const Eigen::Vector2d& centre,
-                          const SonarModelOptions& options) {
+                          const SonarModelOptions& options, const std::vector<bool>& rejected) {
   return model == LocalModel::Oriented
-             ? rasterize_oriented(ring, ranges, theta, resolution, centre, options)
-             : rasterize_turned(ring, ranges, theta, resolution, centre, options);
+             ? rasterize_oriented(ring, ranges, theta, resolution, centre, options, rejected)
+             : rasterize_turned(ring, ranges, theta, resolution, centre, options, rejected);
 }
 
 }  // namespace gridloc

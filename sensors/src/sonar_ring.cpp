@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -95,11 +96,24 @@ void validate(const SonarRing& ring) {
   }
 }
 
-void validate_readings(const SonarRing& ring, const std::vector<double>& ranges) {
+void validate_readings(const SonarRing& ring, const std::vector<double>& ranges,
+                       const std::vector<bool>& rejected) {
   if (ranges.size() != ring.sonars.size()) {
     throw Error("readings: expected " + std::to_string(ring.sonars.size()) +
                 " ranges (one per sonar of ring '" + ring.name + "'), got " +
                 std::to_string(ranges.size()));
+  }
+  if (!rejected.empty()) {
+    if (rejected.size() != ring.sonars.size()) {
+      throw Error("readings: the rejection mask has " + std::to_string(rejected.size()) +
+                  " flags, expected " + std::to_string(ring.sonars.size()) +
+                  " (one per sonar of ring '" + ring.name + "') or none");
+    }
+    if (std::all_of(rejected.begin(), rejected.end(), [](bool r) { return r; })) {
+      throw Error("readings: every reading was rejected by the echo filter (" +
+                  std::to_string(rejected.size()) + " of " + std::to_string(rejected.size()) +
+                  " sonars); nothing is left to localize with");
+    }
   }
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     const double d = ranges[i];

@@ -12,10 +12,13 @@ namespace gridloc {
 
 /// One observation from the robot standing still: either a range per sonar of the ring (m),
 /// in ring order, a sonar's max_range meaning no echo; or, when `scan` is set, a laser or IR
-/// scan (then `ranges` must be empty).
+/// scan (then `ranges` must be empty). `rejected` (empty = none) marks sonars an echo filter
+/// rejected (filter_echoes): they contribute nothing, unlike a sonar without echo, whose cone
+/// says "free"; every reading rejected is an error.
 struct Observation {
   std::vector<double> ranges;
   std::optional<RangeScan> scan = std::nullopt;
+  std::vector<bool> rejected = {};  ///< one flag per sonar, or empty
 };
 
 class Estimator {

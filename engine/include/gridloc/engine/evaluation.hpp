@@ -5,10 +5,12 @@
 /// same poses, priors and readings.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/sensors/echo_filter.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
@@ -40,6 +42,13 @@ struct EvalOptions {
   SonarSimOptions noise = SonarSimOptions::realistic(1);  ///< its seed is replaced per trial
   CorrelationOptions search;  ///< its local/global fields are replaced per configuration
   NoisyProtocol noisy;        ///< when enabled, replaces `noise` and adds failures
+  /// When set (`gridloc eval --echo-filter`), each trial fires the ring `echo_firings` times
+  /// from the same pose (the first firing is the reading of the unfiltered protocol, the others
+  /// draw their noise, dropouts and crosstalk from seeds of their own), filters the firings
+  /// with filter_echoes and localizes with the filtered readings and their rejection mask.
+  /// Unset (default): one firing, exactly the protocol without the filter.
+  std::optional<EchoFilterOptions> echo_filter = std::nullopt;
+  int echo_firings = 3;  ///< consecutive firings per trial when echo_filter is set (>= 2)
   std::vector<EvalConfiguration> configurations = {{LocalModel::Turned, GlobalModel::Raw},
                                                    {LocalModel::Turned, GlobalModel::Thinned},
                                                    {LocalModel::Oriented, GlobalModel::Raw},
@@ -79,6 +88,7 @@ struct TrialRecord {
   double position_error_m = 0.0;
   double heading_error_deg = 0.0;
   Estimate estimate;
+  int rejected_sonars = 0;  ///< sonars the echo filter rejected (0 without it)
 };
 
 struct EvalReport {

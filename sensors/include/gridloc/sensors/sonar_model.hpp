@@ -28,23 +28,28 @@ struct SonarModelOptions {
 /// only. The footprint's n cells get -N/n (N = number of sonars). `options.arc_depth_cells` widens
 /// arcs radially. Overlap rule: an arc cell of any cone stays occupied (arc values of several cones
 /// add, free values on it are dropped); free values of several cones add; the footprint overrides
-/// everything. Readings must have passed validate_readings().
+/// everything. Readings must have passed validate_readings(). A sonar flagged in `rejected`
+/// (empty = none; see filter_echoes) draws no cone at all, neither arc nor free sector, and N
+/// counts only the others: the grid is the one of a ring without that sonar.
 SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<double>& ranges,
                                    double theta, double resolution,
                                    const Eigen::Vector2d& centre = Eigen::Vector2d::Zero(),
-                                   const SonarModelOptions& options = {});
+                                   const SonarModelOptions& options = {},
+                                   const std::vector<bool>& rejected = {});
 
 /// The paper's "turned" grid: rasterize at theta = 0, then move every cell centre by the
 /// rotation theta and round to the nearest cell; a cell hit twice keeps the later value.
 SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double>& ranges,
                                  double theta, double resolution,
                                  const Eigen::Vector2d& centre = Eigen::Vector2d::Zero(),
-                                 const SonarModelOptions& options = {});
+                                 const SonarModelOptions& options = {},
+                                 const std::vector<bool>& rejected = {});
 
 /// Dispatches on `model`.
 SparseLocalGrid rasterize(const SonarRing& ring, const std::vector<double>& ranges, double theta,
                           double resolution, LocalModel model,
                           const Eigen::Vector2d& centre = Eigen::Vector2d::Zero(),
-                          const SonarModelOptions& options = {});
+                          const SonarModelOptions& options = {},
+                          const std::vector<bool>& rejected = {});
 
 }  // namespace gridloc

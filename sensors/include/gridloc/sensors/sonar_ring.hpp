@@ -40,8 +40,11 @@ SonarRing load_sonar_ring(const std::string& yaml_path);
 void validate(const SonarRing& ring);
 
 /// Checks one set of readings against the ring: count, finite, not negative, within
-/// [min_range, max_range] (a value equal to max_range means no echo).
-void validate_readings(const SonarRing& ring, const std::vector<double>& ranges);
+/// [min_range, max_range] (a value equal to max_range means no echo). `rejected` (empty = none)
+/// marks sonars an echo filter rejected: it must hold one flag per sonar and leave at least
+/// one reading.
+void validate_readings(const SonarRing& ring, const std::vector<double>& ranges,
+                       const std::vector<bool>& rejected = {});
 
 /// True when the footprint polygon contains point p (robot frame).
 bool footprint_contains(const Footprint& footprint, const Eigen::Vector2d& p);
