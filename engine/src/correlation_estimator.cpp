@@ -246,8 +246,8 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
 CorrelationEstimator::CorrelationEstimator(OccupancyMap map, CorrelationOptions options)
     : CorrelationEstimator(std::move(map), SonarRing{}, options) {}
 
-Lattice CorrelationEstimator::lattice_for(const Observation& observation,
-                                          const SearchWindow& window) const {
+Lattice CorrelationEstimator::lattice(const Observation& observation,
+                                      const SearchWindow& window) const {
   if (observation.scan) {
     if (!observation.ranges.empty()) {
       throw Error("observation: give sonar ranges or a scan, not both");
@@ -318,7 +318,7 @@ Lattice CorrelationEstimator::lattice_for(const Observation& observation,
 Estimate CorrelationEstimator::estimate(const Observation& observation,
                                         const SearchWindow& window) const {
   const auto start = std::chrono::steady_clock::now();
-  const Lattice lattice = lattice_for(observation, window);
+  const Lattice lattice = this->lattice(observation, window);
   const double res = options_.resolution;
   // A scan under a point model: its points once, rotated per heading.
   std::optional<ScanPoints> points;
@@ -453,7 +453,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
 
 ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
                                                const SearchWindow& window) const {
-  const Lattice lattice = lattice_for(observation, window);
+  const Lattice lattice = this->lattice(observation, window);
   const double res = options_.resolution;
   std::optional<ScanPoints> points;
   if (observation.scan && options_.scan.model != ScanModel::Rays) {

@@ -24,6 +24,7 @@
 #include "gridloc/sensors/readings_io.hpp"
 #include "gridloc/sensors/sonar_model.hpp"
 #include "heatmap_render.hpp"
+#include "localization_args.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -35,39 +36,10 @@ namespace fs = std::filesystem;
 constexpr long long kMaxPoses = 30'000'000;
 
 struct HeatmapArgs {
-  std::string map, ring, readings, scan, prior, truth, out;
-  double max_range = 8.0;
-  std::string local = "oriented", global = "thinned";
-  SearchArgs search;
-  OctomapArgs octomap;
-  SearchWindow window;
-  int levels = 3;
-  bool whole_map = false;         // --global
+  LocalizationArgs inputs;
+  std::string truth, out;
   bool step_theta_given = false;  // --step-theta on the command line: honoured by --global too
 };
-
-/// The lattice estimator.score_volume() will score (the same clipping to the map), to refuse
-/// a huge one before allocating it; 0 when the prior lies outside the map (score_volume
-/// then says so).
-struct VolumeSize {
-  long long nx = 0, ny = 0, headings = 0;
-  double poses() const { return static_cast<double>(nx) * ny * headings; }
-};
-
-VolumeSize volume_size(const CorrelationEstimator& est, const SearchWindow& w) {
-  validate(w);
-  const double res = est.options().resolution;
-  const PaddedGrid& g = est.level(0);
-  const Pose2 p = est.map().geometry.to_grid_frame(w.center);
-  const double cx = std::floor(p.x / res), cy = std::floor(p.y / res);
-  if (cx < 0 || cy < 0 || cx >= g.width || cy >= g.height) return {};
-  const double n = std::round(std::min(w.half_xy / res, 1048576.0));
-  VolumeSize v;
-  v.nx = static_cast<long long>(std::min(g.width - 1.0, cx + n) - std::max(0.0, cx - n) + 1);
-  v.ny = static_cast<long long>(std::min(g.height - 1.0, cy + n) - std::max(0.0, cy - n) + 1);
-  v.headings = 2 * std::llround(std::min(w.half_theta / w.step_theta, 1e12)) + 1;
-  return v;
-}
 
 /// NumPy .npy v1.0: magic, version, header length, a Python dict padded with spaces to a
 /// multiple of 64 bytes ending in '\n', then little-endian float32 in C order.
@@ -149,7 +121,7 @@ nlohmann::json volume_json(const ScoreVolume& v, const SearchWindow& window,
 }
 
 /// Two lines under each image's title: what was matched, and where.
-std::string caption(const HeatmapArgs& a, const Observation& obs, const SearchWindow& w,
+std::string caption(const LocalizationArgs& a, const Observation& obs, const SearchWindow& w,
                     const ScoreVolume& v, const Estimate& e) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -176,42 +148,23 @@ std::string caption(const HeatmapArgs& a, const Observation& obs, const SearchWi
 
 void run(const HeatmapArgs& a) {
   if (a.out.empty()) throw Error("--out: give the folder to write the heatmaps in");
-  if (a.whole_map == !a.prior.empty()) throw Error("give either --prior x,y,theta or --global");
-  if (a.readings.empty() == a.scan.empty()) {
-    throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
-  }
   std::optional<Pose2> truth;
   if (!a.truth.empty()) truth = parse_pose(a.truth, "--truth");
-  Observation obs;
-  if (a.scan.empty()) {
-    obs.ranges = load_readings(a.readings);
-  } else {
-    obs.scan = load_scan_csv(a.scan, a.max_range);
-  }
-
-  CorrelationOptions o;
-  o.local = parse_local(a.local);
-  o.global = parse_global(a.global);
-  a.search.apply(o);
-  o.resolution = a.window.step_xy;
-  o.levels = a.levels;
-  o.reach_m = obs.scan ? a.max_range : 0.0;
-  const CorrelationEstimator estimator =
-      obs.scan ? CorrelationEstimator(load_map(a.map, a.octomap.slice), o)
-               : CorrelationEstimator(load_map(a.map, a.octomap.slice), load_sonar_ring(a.ring), o);
-  SearchWindow window = a.window;
-  if (a.whole_map) {
-    window = estimator.global_window(obs);
-    // The volume is exhaustive, so let a coarser heading step make a global one affordable.
-    if (a.step_theta_given) window.step_theta = a.window.step_theta;
-  } else {
-    window.center = parse_pose(a.prior, "--prior");
-  }
-  const VolumeSize size = volume_size(estimator, window);
-  if (size.poses() > static_cast<double>(kMaxPoses)) {
+  Localization l = prepare_localization(a.inputs);
+  const CorrelationEstimator& estimator = *l.estimator;
+  const Observation& obs = l.observation;
+  const CorrelationOptions& o = estimator.options();
+  SearchWindow& window = l.window;
+  // The volume is exhaustive, so let a coarser heading step make a global one affordable.
+  if (a.inputs.whole_map && a.step_theta_given) window.step_theta = a.inputs.window.step_theta;
+  // Refuse a huge volume before allocating it (the estimator's own lattice, clipped to the map).
+  const Lattice lattice = estimator.lattice(obs, window);
+  const long long nx = lattice.x1 - lattice.x0 + 1, ny = lattice.y1 - lattice.y0 + 1;
+  const double poses = static_cast<double>(nx) * static_cast<double>(ny) * lattice.headings;
+  if (poses > static_cast<double>(kMaxPoses)) {
     std::ostringstream m;
-    m << "heatmap: the score volume would hold " << size.nx << " x " << size.ny << " cells x "
-      << size.headings << " headings = " << std::llround(size.poses()) << " poses, more than "
+    m << "heatmap: the score volume would hold " << nx << " x " << ny << " cells x "
+      << lattice.headings << " headings = " << std::llround(poses) << " poses, more than "
       << kMaxPoses << "; use a smaller --window-xy or --window-theta, or a larger --step-theta";
     throw Error(m.str());
   }
@@ -229,7 +182,7 @@ void run(const HeatmapArgs& a) {
   marks.estimate = e.pose;
   marks.hypotheses = e.alternatives;
   marks.truth = truth;
-  marks.caption = caption(a, obs, window, v, e);
+  marks.caption = caption(a.inputs, obs, window, v, e);
 
   // The local grid at the refined pose: its robot cell and the centre's offset in it.
   const Pose2 p = v.geometry.to_grid_frame(e.pose);
@@ -273,35 +226,12 @@ void run(const HeatmapArgs& a) {
 
 void add_heatmap(CLI::App& app) {
   auto a = std::make_shared<HeatmapArgs>();
-  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand(
       "heatmap", "Score volume of a localization as images (PNG) and a NumPy file, for tuning");
-  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot) of the known map")
-      ->required();
-  a->octomap.add_to(cmd);
   cmd->add_option("--out", a->out, "folder for the images and files (created if missing)")
       ->required();
-  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--readings", a->readings, "sonar readings JSON {\"ranges_m\": [...]}");
-  cmd->add_option("--scan", a->scan, "laser/IR scan CSV: angle_rad,range_m per line");
-  cmd->add_option("--max-range", a->max_range, "scan max range (m); longer ranges are no return")
-      ->capture_default_str();
-  cmd->add_option("--prior", a->prior, "prior pose x,y,theta (m, m, rad)");
-  cmd->add_flag("--global", a->whole_map,
-                "no prior: the whole map and every heading (at --step-theta when given)");
   cmd->add_option("--truth", a->truth, "true pose x,y,theta (m, m, rad), drawn when given");
-  cmd->add_option("--window-xy", a->window.half_xy, "half width of the search square (m)")
-      ->capture_default_str();
-  cmd->add_option("--window-theta", a->window.half_theta, "half width of the heading cone (rad)")
-      ->capture_default_str();
-  cmd->add_option("--step-xy", a->window.step_xy, "translation step = grid cell (m)")
-      ->capture_default_str();
-  cmd->add_option("--step-theta", a->window.step_theta, "heading step (rad)")
-      ->capture_default_str();
-  cmd->add_option("--local", a->local, "local grid: oriented | turned")->capture_default_str();
-  cmd->add_option("--global-grid", a->global, "global grid: thinned | raw")->capture_default_str();
-  cmd->add_option("--levels", a->levels, "multiresolution levels")->capture_default_str();
-  a->search.add_to(cmd);
+  a->inputs.add_to(cmd, "no prior: the whole map and every heading (at --step-theta when given)");
   cmd->callback([a, cmd] {
     a->step_theta_given = cmd->count("--step-theta") > 0;
     run(*a);

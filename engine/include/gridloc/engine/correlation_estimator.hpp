@@ -115,6 +115,11 @@ class CorrelationEstimator final : public Estimator {
   /// same checks and errors as estimate()).
   ScoreVolume score_volume(const Observation& observation, const SearchWindow& window) const;
 
+  /// The lattice estimate() and score_volume() search for `window`, clipped to the map,
+  /// after the same checks of the observation and window (gridloc::Error naming what is
+  /// wrong): to size a search before running it.
+  Lattice lattice(const Observation& observation, const SearchWindow& window) const;
+
   const CorrelationOptions& options() const { return options_; }
   const OccupancyMap& map() const { return map_; }
   const SonarRing& ring() const { return ring_; }
@@ -127,10 +132,6 @@ class CorrelationEstimator final : public Estimator {
   /// are the scan's points under a point model (nullptr otherwise).
   SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,
                              double resolution, const Eigen::Vector2d& centre) const;
-
-  /// Checks the observation and window (throws gridloc::Error naming what is wrong) and
-  /// returns the window's lattice, clipped to the map.
-  Lattice lattice_for(const Observation& observation, const SearchWindow& window) const;
 
   OccupancyMap map_;
   SonarRing ring_;

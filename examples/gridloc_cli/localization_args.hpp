@@ -1,0 +1,42 @@
+#pragma once
+// The inputs of one localization, shared by `localize` and `heatmap`: the map, the sensor
+// (sonar readings or a scan), the prior or --global, the window and the search options.
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+
+#include "gridloc/engine/correlation_estimator.hpp"
+#include "options.hpp"
+
+namespace gridloc::cli {
+
+struct LocalizationArgs {
+  std::string map, ring, readings, scan, prior;
+  double max_range = 8.0;
+  std::string local = "oriented", global = "thinned";
+  SearchArgs search;
+  OctomapArgs octomap;
+  SearchWindow window;
+  int levels = 3;
+  bool whole_map = false;  ///< --global
+
+  /// Registers --map, the OctoMap band, --ring, --readings, --scan, --max-range, --prior,
+  /// --global (with `global_help`), the window, --local, --global-grid, --levels and the
+  /// search options; the ring defaults to the bundled wheelchair ring.
+  void add_to(CLI::App* cmd, const std::string& global_help);
+};
+
+/// What a command needs to localize: the observation, the estimator built for it, the
+/// window (the global one under --global) and the estimator's construction time.
+struct Localization {
+  Observation observation;
+  std::unique_ptr<CorrelationEstimator> estimator;
+  SearchWindow window;
+  double precompute_ms = 0.0;
+};
+
+/// Checks the arguments (one of --prior/--global, one of --readings/--scan; gridloc::Error
+/// naming the option otherwise), loads the inputs and builds the estimator.
+Localization prepare_localization(const LocalizationArgs& a);
+
+}  // namespace gridloc::cli
