@@ -16,15 +16,14 @@
 ///   Strategies: bnb (every case), multires (windowed and wide), exhaustive (case1 only, one
 ///   iteration per repetition). Models: hits and samples everywhere, rays also for case1 with
 ///   bnb (slow: every crossed cell). Variants, bnb with hits and samples only: threads:2
-///   (CorrelationOptions::threads = 2; process CPU time), no_second_peak (second_peak = false:
-///   only the best pose, as the peers' figures), intervals (heading_intervals = true; case1
-///   and case1_global) and intervals/no_second_peak (the same two cases).
-///   Global rows take 0.1-2.5 s per call: they run a fixed iteration count, 1 in the default
-///   (smoke) set and kGlobalIterationsFull when GRIDLOC_BENCH_FULL=1 is set (the convention of
-///   bench_scaling.cpp). The slowest of them, the global samples rows that search the second
-///   peak (1-2.5 s per call), are registered only with GRIDLOC_BENCH_FULL=1, so that bench_smoke
-///   stays short; the default set keeps every global hits row and the samples rows with
-///   no_second_peak.
+///   (CorrelationOptions::threads = 2; process CPU time), no_second_peak (second_peak = false and
+///   covariance_cells = 0: only the best pose, as the peers' figures), intervals (heading_intervals
+///   = true; case1 and case1_global) and intervals/no_second_peak (the same two cases). Global rows
+///   take 0.1-2.5 s per call: they run a fixed iteration count, 1 in the default (smoke) set and
+///   kGlobalIterationsFull when GRIDLOC_BENCH_FULL=1 is set (the convention of bench_scaling.cpp).
+///   The slowest of them, the global samples rows that search the second peak (1-2.5 s per call),
+///   are registered only with GRIDLOC_BENCH_FULL=1, so that bench_smoke stays short; the default
+///   set keeps every global hits row and the samples rows with no_second_peak.
 /// Counters: pos_err_mm and heading_err_deg of the refined pose against truth.txt,
 /// poses_per_loc (poses scored), cells_per_s, headings, step_theta_mrad, median_ms (estimator's
 /// own elapsed_ms), proven (stats.proven_optimal, 1 or 0).
@@ -153,6 +152,8 @@ CorrelationOptions scan_options(const Config& c) {
   o.threads = c.threads;
   o.heading_intervals = c.intervals;
   o.second_peak = c.second_peak;
+  // "Best pose only" is what the peers' figures measure: no second peak, no covariance.
+  if (!c.second_peak) o.covariance_cells = 0;
   o.resolution = kResolution;
   o.reach_m = kMaxRange;
   return o;
