@@ -281,6 +281,32 @@ TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
   EXPECT_EQ(lines, 12 * 4);  // every trial of the four configurations
 }
 
+// simulate --firings writes consecutive firings; localize filters them (the echo filter)
+// and says which sonars it rejected.
+TEST_F(Cli, SeveralFiringsGoThroughTheEchoFilter) {
+  const std::string room_l = test::map_path("room_l");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) +
+                                      " --pose 2.4,1.6,0.3 --sigma 0.02 --crosstalk 0.3 "
+                                      "--firings 3 --seed 4");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const auto written = nlohmann::json::parse(sim.out);
+  ASSERT_EQ(written.at("firings_m").size(), 3u);
+  EXPECT_EQ(written.at("ranges_m"), written.at("firings_m")[0]);
+  const std::string readings = dir.write("f.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(room_l) + " --readings " +
+                                    quote(readings) + " --prior 2.6,1.5,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("echo_filter").at("firings").get<int>(), 3);
+  EXPECT_FALSE(j.at("echo_filter").at("rejected_sonars").empty()) << r.out;  // 30 % crosstalk
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 2.4,
+                       j.at("pose").at("y").get<double>() - 1.6),
+            0.10)
+      << r.out;
+  expect_cli_error(run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2,2,0 --firings 0"),
+                   "--firings");
+}
+
 TEST_F(Cli, LocalizeGivesTheVerdict) {
   const std::string room_l = test::map_path("room_l");
   const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2.4,1.6,0.3");

@@ -29,6 +29,27 @@ TEST(ReadingsIo, NullIsReadAsNaN) {
   EXPECT_TRUE(std::isnan(r[1]));
 }
 
+TEST(ReadingsIo, FiringsAreReadOrRangesAreOneFiring) {
+  TempDir dir;
+  const std::string several =
+      dir.write("f.json", R"({"ranges_m": [9], "firings_m": [[1.5, 6], [1.4, null], [1.5, 2]]})");
+  const auto f = load_firings(several);
+  ASSERT_EQ(f.size(), 3u);  // firings_m wins over ranges_m
+  EXPECT_EQ(f[0], (std::vector<double>{1.5, 6.0}));
+  EXPECT_TRUE(std::isnan(f[1][1]));
+  EXPECT_EQ(f[2], (std::vector<double>{1.5, 2.0}));
+  const std::string one = dir.write("r.json", R"({"ranges_m": [1.5, 6]})");
+  EXPECT_EQ(load_firings(one), (std::vector<std::vector<double>>{{1.5, 6.0}}));
+  const std::string flat = dir.write("bad.json", R"({"firings_m": [1.5, 6]})");
+  expect_error([&] { load_firings(flat); }, {flat, "firings_m", "arrays"});
+  const std::string empty = dir.write("empty.json", R"({"firings_m": []})");
+  expect_error([&] { load_firings(empty); }, {empty, "non-empty"});
+  const std::string text = dir.write("text.json", R"({"firings_m": [[1.0, "x"]]})");
+  expect_error([&] { load_firings(text); }, {text, "numbers"});
+  const std::string neither = dir.write("none.json", R"({"pose": {}})");
+  expect_error([&] { load_firings(neither); }, {neither, "ranges_m", "firings_m"});
+}
+
 TEST(ReadingsIo, Errors) {
   TempDir dir;
   const std::string missing = dir.file("none.json");

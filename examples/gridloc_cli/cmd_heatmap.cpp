@@ -189,9 +189,9 @@ void run(const HeatmapArgs& a) {
   const double res = v.resolution;
   const Cell robot = v.geometry.cell_of(p.x, p.y);
   const Eigen::Vector2d centre(p.x - (robot.ix + 0.5) * res, p.y - (robot.iy + 0.5) * res);
-  const SparseLocalGrid local =
-      obs.scan ? rasterize_scan(*obs.scan, p.theta, res, centre, o.scan)
-               : rasterize(estimator.ring(), obs.ranges, p.theta, res, o.local, centre, o.sonar);
+  const SparseLocalGrid local = obs.scan ? rasterize_scan(*obs.scan, p.theta, res, centre, o.scan)
+                                         : rasterize(estimator.ring(), obs.ranges, p.theta, res,
+                                                     o.local, centre, o.sonar, obs.rejected);
 
   // volume.json names the files relative to its folder; stdout gives their paths.
   const nlohmann::json names = {{"score_xy_best_theta", "score_xy_best_theta.png"},

@@ -40,6 +40,13 @@ void run(const LocalizeArgs& a) {
                  {"half_theta", window.half_theta},
                  {"step_xy", window.step_xy},
                  {"step_theta", window.step_theta}};
+  if (l.firings > 1) {
+    nlohmann::json rejected = nlohmann::json::array();
+    for (std::size_t i = 0; i < obs.rejected.size(); ++i) {
+      if (obs.rejected[i]) rejected.push_back(i);
+    }
+    j["echo_filter"] = {{"firings", l.firings}, {"rejected_sonars", rejected}};
+  }
   j["timing"] = {{"median_ms", ms[ms.size() / 2]},
                  {"min_ms", ms.front()},
                  {"precompute_ms", precompute_ms},

@@ -15,6 +15,7 @@ namespace {
 struct SimulateArgs {
   std::string map, ring, pose, out;
   bool realistic = false;
+  int firings = 1;
   SonarSimOptions sim;
   OctomapArgs octomap;
 };
@@ -23,9 +24,20 @@ void run(const SimulateArgs& a) {
   const Pose2 pose = parse_pose(a.pose, "--pose");
   SonarSimOptions o = a.sim;
   if (a.realistic) o = SonarSimOptions::realistic(a.sim.seed);
-  const auto ranges =
-      simulate_sonar(load_map(a.map, a.octomap.slice), load_sonar_ring(a.ring), pose, o);
-  const nlohmann::json j = {{"pose", to_json(pose)}, {"ranges_m", ranges}};
+  if (a.firings < 1 || a.firings > 100) {
+    throw Error("--firings must lie in [1, 100], got " + std::to_string(a.firings));
+  }
+  const OccupancyMap map = load_map(a.map, a.octomap.slice);
+  const SonarRing ring = load_sonar_ring(a.ring);
+  // Consecutive firings from the same pose draw their noise independently (seed, seed + 1...).
+  std::vector<std::vector<double>> firings;
+  for (int k = 0; k < a.firings; ++k) {
+    SonarSimOptions firing = o;
+    firing.seed = o.seed + static_cast<std::uint64_t>(k);
+    firings.push_back(simulate_sonar(map, ring, pose, firing));
+  }
+  nlohmann::json j = {{"pose", to_json(pose)}, {"ranges_m", firings.front()}};
+  if (a.firings > 1) j["firings_m"] = firings;
   if (a.out.empty()) {
     std::cout << j.dump(2) << "\n";
     return;
@@ -57,6 +69,10 @@ void add_simulate(CLI::App& app) {
                   "no echo beyond this incidence angle (90 = off)")
       ->capture_default_str();
   cmd->add_option("--crosstalk", a->sim.crosstalk_prob, "probability of a wrong short echo")
+      ->capture_default_str();
+  cmd->add_option("--firings", a->firings,
+                  "consecutive firings from the pose (> 1: written as firings_m, which "
+                  "localize filters for crosstalk)")
       ->capture_default_str();
   cmd->add_flag("--realistic", a->realistic,
                 "use the evaluation's realistic noise (overrides the noise options)");

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/echo_filter.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
 
@@ -40,8 +41,11 @@ Localization prepare_localization(const LocalizationArgs& a) {
     throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
   }
   Localization l;
+  std::vector<std::vector<double>> firings;
   if (a.scan.empty()) {
-    l.observation.ranges = load_readings(a.readings);
+    firings = load_firings(a.readings);
+    l.firings = static_cast<int>(firings.size());
+    l.observation.ranges = firings.front();
   } else {
     l.observation.scan = load_scan_csv(a.scan, a.max_range);
   }
@@ -55,9 +59,17 @@ Localization prepare_localization(const LocalizationArgs& a) {
   // A scan needs no ring: the padding covers its max range instead.
   o.reach_m = l.observation.scan ? a.max_range : 0.0;
   OccupancyMap map = load_map(a.map, a.octomap.slice);
-  l.estimator = l.observation.scan ? std::make_unique<CorrelationEstimator>(std::move(map), o)
-                                   : std::make_unique<CorrelationEstimator>(
-                                         std::move(map), load_sonar_ring(a.ring), o);
+  if (l.observation.scan) {
+    l.estimator = std::make_unique<CorrelationEstimator>(std::move(map), o);
+  } else {
+    SonarRing ring = load_sonar_ring(a.ring);
+    if (firings.size() > 1) {  // consecutive firings: keep the echoes they repeat
+      FilteredReadings f = filter_echoes(ring, firings);
+      l.observation.ranges = std::move(f.ranges);
+      l.observation.rejected = std::move(f.rejected);
+    }
+    l.estimator = std::make_unique<CorrelationEstimator>(std::move(map), std::move(ring), o);
+  }
   l.precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
   l.window = a.window;
   if (a.whole_map) {

@@ -33,10 +33,13 @@ struct Localization {
   std::unique_ptr<CorrelationEstimator> estimator;
   SearchWindow window;
   double precompute_ms = 0.0;
+  int firings = 0;  ///< sonar firings in the readings file (> 1: echo-filtered, see rejected)
 };
 
 /// Checks the arguments (one of --prior/--global, one of --readings/--scan; gridloc::Error
-/// naming the option otherwise), loads the inputs and builds the estimator.
+/// naming the option otherwise), loads the inputs and builds the estimator. A readings file
+/// with several firings (firings_m) goes through the echo filter (filter_echoes): its
+/// rejected sonars are in observation.rejected.
 Localization prepare_localization(const LocalizationArgs& a);
 
 }  // namespace gridloc::cli

@@ -1,5 +1,6 @@
 #include "gridloc/sensors/readings_io.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -9,30 +10,61 @@
 
 namespace gridloc {
 
-std::vector<double> load_readings(const std::string& path) {
+namespace {
+
+nlohmann::json parse_file(const std::string& path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": readings file not found");
   std::ifstream in(path);
-  nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
+    return nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": malformed JSON: " + e.what());
   }
-  if (!j.is_object() || !j.contains("ranges_m") || !j["ranges_m"].is_array()) {
-    throw Error(path + ": expected an object with an array 'ranges_m'");
-  }
+}
+
+/// The numbers of a JSON array; null reads as NaN so that validation names it (JSON has no
+/// NaN).
+std::vector<double> ranges_of(const nlohmann::json& array, const std::string& path,
+                              const std::string& key) {
   std::vector<double> ranges;
-  for (const auto& v : j["ranges_m"]) {
-    // JSON has no NaN; null is read as NaN so that validation names it.
+  for (const auto& v : array) {
     if (v.is_null()) {
       ranges.push_back(std::numeric_limits<double>::quiet_NaN());
     } else if (v.is_number()) {
       ranges.push_back(v.get<double>());
     } else {
-      throw Error(path + ": 'ranges_m' must hold numbers, found " + v.dump());
+      throw Error(path + ": '" + key + "' must hold numbers, found " + v.dump());
     }
   }
   return ranges;
+}
+
+}  // namespace
+
+std::vector<double> load_readings(const std::string& path) {
+  const nlohmann::json j = parse_file(path);
+  if (!j.is_object() || !j.contains("ranges_m") || !j["ranges_m"].is_array()) {
+    throw Error(path + ": expected an object with an array 'ranges_m'");
+  }
+  return ranges_of(j["ranges_m"], path, "ranges_m");
+}
+
+std::vector<std::vector<double>> load_firings(const std::string& path) {
+  const nlohmann::json j = parse_file(path);
+  if (j.is_object() && j.contains("firings_m")) {
+    const nlohmann::json& f = j["firings_m"];
+    if (!f.is_array() || f.empty() ||
+        !std::all_of(f.begin(), f.end(), [](const auto& x) { return x.is_array(); })) {
+      throw Error(path + ": 'firings_m' must be a non-empty array of arrays of ranges");
+    }
+    std::vector<std::vector<double>> firings;
+    for (const auto& firing : f) firings.push_back(ranges_of(firing, path, "firings_m"));
+    return firings;
+  }
+  if (!j.is_object() || !j.contains("ranges_m") || !j["ranges_m"].is_array()) {
+    throw Error(path + ": expected an object with an array 'ranges_m' or 'firings_m'");
+  }
+  return {ranges_of(j["ranges_m"], path, "ranges_m")};
 }
 
 }  // namespace gridloc

@@ -1,6 +1,8 @@
 #pragma once
 /// Readings files: JSON `{"ranges_m": [d0, d1, ...]}` (what `gridloc simulate` writes; other
-/// keys are ignored), one range per sonar in ring order, max_range meaning no echo.
+/// keys are ignored), one range per sonar in ring order, max_range meaning no echo; or
+/// `{"firings_m": [[d0, d1, ...], ...]}`, several consecutive firings of the ring from one
+/// pose (`gridloc simulate --firings K`), for the echo filter (filter_echoes).
 #include <string>
 #include <vector>
 
@@ -9,5 +11,9 @@ namespace gridloc {
 /// Loads the ranges of a readings file; throws gridloc::Error for a missing or malformed file.
 /// The values are checked against a ring by validate_readings().
 std::vector<double> load_readings(const std::string& path);
+
+/// Loads every firing of a readings file: the `firings_m` arrays, or `ranges_m` as a single
+/// firing. Throws gridloc::Error for a missing or malformed file, or one with neither key.
+std::vector<std::vector<double>> load_firings(const std::string& path);
 
 }  // namespace gridloc
