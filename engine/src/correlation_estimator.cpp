@@ -60,7 +60,12 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
   double total = 0.0;
-  for (int it = std::max(0, best.it - k); it <= std::min(lattice.headings - 1, best.it + k); ++it) {
+  // A lattice that goes all the way round wraps: the neighbours of heading 0 include the last.
+  const bool round = lattice.headings * std::abs(lattice.step_theta) >= 2.0 * std::numbers::pi;
+  const int t0 = round ? best.it - k : std::max(0, best.it - k);
+  const int t1 = round ? best.it + k : std::min(lattice.headings - 1, best.it + k);
+  for (int t = t0; t <= t1; ++t) {
+    const int it = (t % lattice.headings + lattice.headings) % lattice.headings;
     const PlacedLocalGrid placed = placed_at(it);
     for (int iy = std::max(lattice.y0, best.iy - k); iy <= std::min(lattice.y1, best.iy + k);
          ++iy) {
@@ -69,7 +74,7 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
         const double w = std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score));
         // Offsets from the winner: metres, metres, radians.
         const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
-                                (it - best.it) * lattice.step_theta);
+                                (t - best.it) * lattice.step_theta);
         total += w;
         mean += w * d;
         second += w * d * d.transpose();
@@ -225,6 +230,12 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                 std::to_string(options_.reach_m));
   }
   reach_ = std::max(options_.reach_m, ring_.sonars.empty() ? 0.0 : ring_.reach());
+  if (reach_ / options_.resolution > 1e6) {  // the padding alone would be 2 million cells wide
+    std::ostringstream m;
+    m << "correlation options: reach " << reach_ << " m is more than a million cells of "
+      << options_.resolution << " m; a sensor reaches metres, not kilometres";
+    throw Error(m.str());
+  }
   // Only the multiresolution search reads the coarser levels.
   const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < built; ++l) {

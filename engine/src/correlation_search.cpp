@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <tuple>
 
 #include "gridloc/grids/error.hpp"
@@ -50,13 +51,17 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   p.pad = pad;
   p.width = grid.width();
   p.height = grid.height();
-  GridGeometry g = grid.geometry;
-  g.width += 2 * pad;
-  g.height += 2 * pad;
-  if (static_cast<double>(g.width) * g.height >= 2147483648.0) {
-    throw Error("padded grid of " + std::to_string(g.width) + " x " + std::to_string(g.height) +
-                " cells is too large (2^31 cells or more)");
+  if (pad < 0) throw Error("padded grid: pad = " + std::to_string(pad) + " must be >= 0");
+  // Sizes in double first: a huge pad must be an error, not an int overflow.
+  const double w = grid.width() + 2.0 * pad, h = grid.height() + 2.0 * pad;
+  if (w * h >= 2147483648.0) {
+    std::ostringstream m;
+    m << "padded grid of " << w << " x " << h << " cells is too large (2^31 cells or more)";
+    throw Error(m.str());
   }
+  GridGeometry g = grid.geometry;
+  g.width = static_cast<int>(w);
+  g.height = static_cast<int>(h);
   p.grid = EvidenceGrid(g, 0.0f);
   for (int iy = 0; iy < grid.height(); ++iy) {
     std::copy(grid.row(iy), grid.row(iy) + grid.width(), p.grid.row(iy + pad) + pad);

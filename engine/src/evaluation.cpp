@@ -165,9 +165,10 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
       const NoisyProtocol& noisy = options.noisy;
       SonarSimOptions noise = noisy.enabled ? noisy.noise : options.noise;
       noise.seed = rng.next();
-      // The noisy protocol's draws come after the plain protocol's, which stay as they were.
+      // Only the noisy protocol draws these, so the plain protocol's draws stay as they were
+      // (a noisy run's priors differ from a plain run's).
       const bool furniture = noisy.enabled && rng.uniform(0.0, 1.0) < noisy.furniture_prob;
-      const bool wrong_prior = noisy.enabled && rng.uniform(0.0, 1.0) < noisy.wrong_prior_prob;
+      bool wrong_prior = noisy.enabled && rng.uniform(0.0, 1.0) < noisy.wrong_prior_prob;
       double footprint_radius = 0.0;
       for (const auto& p : ring.footprint.polygon) {
         footprint_radius = std::max(footprint_radius, p.norm());
@@ -216,6 +217,10 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
       const Pose2 clamped{std::clamp(g.x, eps, geo.width * geo.resolution - eps),
                           std::clamp(g.y, eps, geo.height * geo.resolution - eps), g.theta};
       window.center = geo.to_world_frame(clamped);
+      // Pulled back onto the map, a wrong prior may hold the truth again: then it is not one.
+      const Pose2 truth_g = geo.to_grid_frame(truth);
+      wrong_prior = wrong_prior && std::max(std::abs(truth_g.x - clamped.x),
+                                            std::abs(truth_g.y - clamped.y)) > window.half_xy;
 
       for (std::size_t c = 0; c < nc; ++c) {
         Estimate e;

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "options.hpp"
 
@@ -29,11 +30,14 @@ void run(const SimulateArgs& a) {
   }
   const OccupancyMap map = load_map(a.map, a.octomap.slice);
   const SonarRing ring = load_sonar_ring(a.ring);
-  // Consecutive firings from the same pose draw their noise independently (seed, seed + 1...).
+  // Consecutive firings from the same pose draw their noise independently: the first from
+  // --seed (what one firing would read), the others from seeds hashed from it and k, so
+  // that neighbouring --seed values share no firing.
   std::vector<std::vector<double>> firings;
   for (int k = 0; k < a.firings; ++k) {
     SonarSimOptions firing = o;
-    firing.seed = o.seed + static_cast<std::uint64_t>(k);
+    if (k > 0)
+      firing.seed = Rng(o.seed ^ (0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(k))).next();
     firings.push_back(simulate_sonar(map, ring, pose, firing));
   }
   nlohmann::json j = {{"pose", to_json(pose)}, {"ranges_m", firings.front()}};

@@ -115,7 +115,9 @@ inline double correlate(const std::int8_t* arc, const std::int8_t* all,
 }
 
 /// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
-/// and the local grid's extent must not exceed the padding. Equal to score_reference exactly.
+/// and the local grid's extent must not exceed the padding. Equal to score_reference exactly
+/// when both sum in the same order (place() keeps the local grid's order), and on the
+/// fixed-point path whatever the order.
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
