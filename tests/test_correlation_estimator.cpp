@@ -298,6 +298,10 @@ TEST_F(Estimator, BadOptions) {
   empty.name = "nothing";
   test::expect_error([&] { CorrelationEstimator(map("room_rect"), empty, {}); },
                      {"nothing", "no sonars"});
+  CorrelationOptions far;
+  far.reach_m = 1e12;  // finite, but its padding would overflow the grid's int sizes
+  test::expect_error([&] { CorrelationEstimator(map("room_rect"), far); },
+                     {"reach", "million cells"});
 }
 
 }  // namespace

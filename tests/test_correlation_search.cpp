@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gridloc/sensors/rng.hpp"
+#include "test_support.hpp"
 
 namespace gridloc {
 namespace {
@@ -82,6 +83,15 @@ TEST(PadGrid, ArcViewClampsFreeCellsUnderTheNeutralRule) {
     EXPECT_EQ(signed_.arc_view[i], signed_.grid.cells[i]);
   }
   EXPECT_EQ(neutral.grid.cells, signed_.grid.cells);
+}
+
+TEST(PadGrid, NegativeOrHugePaddingIsAnError) {
+  GridGeometry geo;
+  geo.width = 4;
+  geo.height = 4;
+  const EvidenceGrid g(geo, 0.0f);
+  test::expect_error([&] { pad_grid(g, -1); }, {"pad = -1", ">= 0"});
+  test::expect_error([&] { pad_grid(g, 40000); }, {"too large", "2^31"});
 }
 
 TEST(Place, ArcCellsFirstThenFreeCellsEachInLocalOrder) {
