@@ -1,0 +1,60 @@
+#pragma once
+/// CARMEN robot logs (the format of the public SLAM datasets): laser scans and odometry with
+/// their timestamps, read from `FLASER`, `ROBOTLASER1` and `ODOM` lines. Other lines
+/// (`PARAM`, `SYNC`, `NEFF`, ...) and `#` comments are skipped.
+#include <istream>
+#include <string>
+#include <vector>
+
+#include "gridloc/grids/geometry.hpp"
+#include "gridloc/sensors/range_scan.hpp"
+
+namespace gridloc {
+
+struct CarmenOptions {
+  /// FLASER lines carry no maximum range: ranges at or beyond this (m) are "no return" (SICK
+  /// scanners report about 81.9 m for no echo).
+  double max_range = 80.0;
+};
+
+/// One laser scan of the log.
+struct LaserRecord {
+  double timestamp = 0.0;  ///< the line's first timestamp (ipc_timestamp), s
+  RangeScan scan;          ///< angles in the laser's frame (rad), ranges (m)
+  Pose2 laser_pose;        ///< FLASER: the logged pose (the corrected one in SLAM-corrected logs)
+  Pose2 robot_pose;        ///< FLASER: the second logged pose; ROBOTLASER1: the robot's pose
+  std::size_t line = 0;    ///< 1-based line number in the file
+  int invalid_ranges = 0;  ///< NaN or infinite readings, kept as no return (max range)
+};
+
+struct OdometryRecord {
+  double timestamp = 0.0;
+  Pose2 pose;
+  double tv = 0.0;  ///< translational velocity, m/s
+  double rv = 0.0;  ///< rotational velocity, rad/s
+  std::size_t line = 0;
+};
+
+struct CarmenLog {
+  std::vector<LaserRecord> lasers;
+  std::vector<OdometryRecord> odometry;
+};
+
+/// Parses a CARMEN log from `in`; `name` names it in errors. Throws gridloc::Error naming the
+/// line and field for a malformed FLASER / ROBOTLASER1 / ODOM line (too few fields, a field
+/// that is not a number, a reading count that does not match, a negative range). A NaN or
+/// infinite range, which real logs use for an invalid beam, reads as no return (counted in
+/// LaserRecord::invalid_ranges).
+///
+/// FLASER `n r1..rn x y th odom_x odom_y odom_th ipc_timestamp host logger_timestamp`: n ranges
+/// over the laser's 180 degree front field, from -90 degrees; odd n includes both ends (181:
+/// 1 degree apart, 361: 0.5), even n does not (180: 1 degree). ROBOTLASER1 gives its start
+/// angle, field of view, resolution and maximum range itself.
+CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
+                           const CarmenOptions& options = {});
+
+/// parse_carmen_log of a file; gridloc::Error when it is missing, unreadable or gzip-compressed
+/// (decompress it first: gunzip).
+CarmenLog load_carmen_log(const std::string& path, const CarmenOptions& options = {});
+
+}  // namespace gridloc
