@@ -39,6 +39,13 @@ class Fields {
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(t)) fail(field + " is not finite");
     return {x, y, t};
   }
+  /// The unit of the last digit of the field just read ("940.54" -> 0.01, "12" -> 1).
+  double last_resolution() const {
+    const std::string& t = tokens_[next_ - 1];
+    const auto dot = t.find('.');
+    if (dot == std::string::npos || t.find_first_of("eE") != std::string::npos) return 1.0;
+    return std::pow(10.0, -static_cast<double>(t.size() - dot - 1));
+  }
   void skip(std::size_t n) { next_ += n; }
   bool done() const { return next_ >= tokens_.size(); }
   [[noreturn]] void fail(const std::string& what) const { throw Error(where_ + ": " + what); }
@@ -87,6 +94,7 @@ LaserRecord flaser(Fields& f, const CarmenOptions& o) {
   rec.laser_pose = f.pose("laser pose");
   rec.robot_pose = f.pose("odometry pose");
   rec.timestamp = f.number("ipc timestamp");
+  rec.timestamp_resolution = f.last_resolution();
   return rec;
 }
 
@@ -114,6 +122,7 @@ LaserRecord robotlaser(Fields& f) {
   rec.robot_pose = f.pose("robot pose");
   f.skip(5);  // tv, rv, forward and side safety distances, turn axis
   rec.timestamp = f.number("ipc timestamp");
+  rec.timestamp_resolution = f.last_resolution();
   return rec;
 }
 

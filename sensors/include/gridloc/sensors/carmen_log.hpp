@@ -20,6 +20,9 @@ struct CarmenOptions {
 /// One laser scan of the log.
 struct LaserRecord {
   double timestamp = 0.0;  ///< the line's first timestamp (ipc_timestamp), s
+  /// The unit of the timestamp's last printed digit (logs print 6 significant digits:
+  /// "1777.35" is known to 0.01 s), for matching times.
+  double timestamp_resolution = 0.0;
   RangeScan scan;          ///< angles in the laser's frame (rad), ranges (m)
   Pose2 laser_pose;        ///< FLASER: the logged pose (the corrected one in SLAM-corrected logs)
   Pose2 robot_pose;        ///< FLASER: the second logged pose; ROBOTLASER1: the robot's pose

@@ -1,0 +1,79 @@
+#include "gridloc/sensors/slam_relations.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+
+std::vector<SlamRelation> load_slam_relations(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error(path + ": relations file not found");
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot read the relations file");
+  std::vector<SlamRelation> out;
+  std::string text;
+  for (std::size_t line = 1; std::getline(in, text); ++line) {
+    std::istringstream words(text);
+    std::vector<std::string> tokens;
+    for (std::string w; words >> w;) tokens.push_back(w);
+    if (tokens.empty() || tokens[0][0] == '#') continue;
+    const std::string where = path + ":" + std::to_string(line);
+    if (tokens.size() < 8) {
+      throw Error(where + ": a relation needs 8 numbers (t1 t2 x y z roll pitch yaw), got " +
+                  std::to_string(tokens.size()));
+    }
+    double v[8];
+    for (int k = 0; k < 8; ++k) {
+      char* end = nullptr;
+      v[k] = std::strtod(tokens[static_cast<std::size_t>(k)].c_str(), &end);
+      if (end != tokens[static_cast<std::size_t>(k)].c_str() +
+                     tokens[static_cast<std::size_t>(k)].size() ||
+          !std::isfinite(v[k])) {
+        throw Error(where + ": field " + std::to_string(k + 1) + " is not a finite number: '" +
+                    tokens[static_cast<std::size_t>(k)] + "'");
+      }
+    }
+    out.push_back({v[0], v[1], Pose2{v[2], v[3], v[7]}, line});
+  }
+  return out;
+}
+
+std::vector<RelationPair> pair_relations(const std::vector<SlamRelation>& relations,
+                                         const CarmenLog& log, double offset_s,
+                                         double tolerance_s) {
+  // Scan indices sorted by time (a log's timestamps need not be in order).
+  std::vector<std::size_t> order(log.lasers.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  auto time_of = [&](std::size_t k) { return log.lasers[k].timestamp + offset_s; };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return time_of(a) < time_of(b); });
+  // The scan nearest to t, if within the tolerance.
+  auto nearest = [&](double t, std::size_t& found) {
+    const auto it = std::lower_bound(order.begin(), order.end(), t,
+                                     [&](std::size_t k, double v) { return time_of(k) < v; });
+    double best = std::numeric_limits<double>::infinity();
+    bool ok = false;
+    for (auto c : {it, it == order.begin() ? it : it - 1}) {
+      if (c == order.end()) continue;
+      // Within the tolerance, or within half the last printed digit of the scan's time.
+      const double d = std::abs(time_of(*c) - t);
+      const double allowed =
+          std::max(tolerance_s, 0.5 * log.lasers[*c].timestamp_resolution + 1e-9);
+      if (d <= allowed && d <= best) best = d, found = *c, ok = true;
+    }
+    return ok;
+  };
+  std::vector<RelationPair> pairs;
+  for (const SlamRelation& r : relations) {
+    RelationPair p{r, 0, 0};
+    if (nearest(r.t1, p.first) && nearest(r.t2, p.second)) pairs.push_back(p);
+  }
+  return pairs;
+}
+
+}  // namespace gridloc
