@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "text_lines.hpp"
 
 namespace gridloc {
 namespace {
@@ -143,14 +144,9 @@ CarmenLog parse_carmen_log(std::istream& in, const std::string& name, const Carm
     throw Error("CARMEN log options: max_range must be > 0, got " + std::to_string(o.max_range));
   }
   CarmenLog log;
-  std::string text;
-  for (std::size_t line = 1; std::getline(in, text); ++line) {
-    std::istringstream words(text);
-    std::vector<std::string> tokens;
-    for (std::string w; words >> w;) tokens.push_back(w);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
+  detail::for_each_word_line(in, [&](const std::vector<std::string>& tokens, std::size_t line) {
     const std::string& kind = tokens[0];
-    if (kind != "FLASER" && kind != "ROBOTLASER1" && kind != "ODOM") continue;
+    if (kind != "FLASER" && kind != "ROBOTLASER1" && kind != "ODOM") return;
     Fields f(tokens, name + ":" + std::to_string(line) + ": " + kind);
     if (kind == "ODOM") {
       log.odometry.push_back(odom(f));
@@ -159,7 +155,7 @@ CarmenLog parse_carmen_log(std::istream& in, const std::string& name, const Carm
       log.lasers.push_back(kind == "FLASER" ? flaser(f, o) : robotlaser(f));
       log.lasers.back().line = line;
     }
-  }
+  });
   return log;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "text_lines.hpp"
 
 namespace gridloc {
 
@@ -16,30 +17,24 @@ std::vector<SlamRelation> load_slam_relations(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot read the relations file");
   std::vector<SlamRelation> out;
-  std::string text;
-  for (std::size_t line = 1; std::getline(in, text); ++line) {
-    std::istringstream words(text);
-    std::vector<std::string> tokens;
-    for (std::string w; words >> w;) tokens.push_back(w);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
+  detail::for_each_word_line(in, [&](const std::vector<std::string>& tokens, std::size_t line) {
     const std::string where = path + ":" + std::to_string(line);
     if (tokens.size() < 8) {
       throw Error(where + ": a relation needs 8 numbers (t1 t2 x y z roll pitch yaw), got " +
                   std::to_string(tokens.size()));
     }
     double v[8];
-    for (int k = 0; k < 8; ++k) {
+    for (std::size_t k = 0; k < 8; ++k) {
+      const std::string& t = tokens[k];
       char* end = nullptr;
-      v[k] = std::strtod(tokens[static_cast<std::size_t>(k)].c_str(), &end);
-      if (end != tokens[static_cast<std::size_t>(k)].c_str() +
-                     tokens[static_cast<std::size_t>(k)].size() ||
-          !std::isfinite(v[k])) {
-        throw Error(where + ": field " + std::to_string(k + 1) + " is not a finite number: '" +
-                    tokens[static_cast<std::size_t>(k)] + "'");
+      v[k] = std::strtod(t.c_str(), &end);
+      if (end != t.c_str() + t.size() || !std::isfinite(v[k])) {
+        throw Error(where + ": field " + std::to_string(k + 1) + " is not a finite number: '" + t +
+                    "'");
       }
     }
     out.push_back({v[0], v[1], Pose2{v[2], v[3], v[7]}, line});
-  }
+  });
   return out;
 }
 
