@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -305,6 +306,29 @@ TEST_F(Cli, SeveralFiringsGoThroughTheEchoFilter) {
       << r.out;
   expect_cli_error(run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2,2,0 --firings 0"),
                    "--firings");
+}
+
+TEST_F(Cli, RelationsOnTheIntelLog) {
+  const std::string d =
+      std::string(GRIDLOC_TEST_SHARED_DIR) + "/datasets/xiaofeng419_SLAM-2D-LIDAR-SCAN";
+  const std::string log = d + "/intel.gfs.log", rel = d + "/intel.relations";
+  expect_cli_error(
+      run_cli(dir, "relations --log " + quote(dir.file("none.log")) + " --relations " + quote(rel)),
+      "not found");
+  expect_cli_error(run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
+                                    " --estimator correlation"),
+                   "--estimator");
+  if (!std::filesystem::exists(log)) GTEST_SKIP() << "../shared is absent: " << log;
+  const CliRun r = run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
+                                    " --time-offset 976052857.337311 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("pairs").get<int>(), 118);
+  for (const char* key : {"translation_error_m", "rotation_error_deg"}) {
+    EXPECT_TRUE(j.at(key).at("mean").is_number()) << r.out;
+    EXPECT_TRUE(j.at(key).at("std").is_number()) << r.out;
+  }
+  EXPECT_LE(j.at("failures").get<int>(), 118);
 }
 
 TEST_F(Cli, LocalizeGivesTheVerdict) {

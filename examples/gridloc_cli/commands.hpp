@@ -11,6 +11,7 @@ void add_localize(CLI::App& app);
 void add_simulate(CLI::App& app);
 void add_demo(CLI::App& app);
 void add_eval(CLI::App& app);
+void add_relations(CLI::App& app);
 void add_heatmap(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& p);
