@@ -98,19 +98,32 @@ const Choice& chosen() {
 
 }  // namespace
 
+namespace {
+
+using GroupSum = std::int64_t (*)(const std::int8_t*, const std::int32_t*, const std::int32_t*,
+                                  std::size_t);
+
+/// The arc cells read `arc`, the others `all`: one sum per group.
+std::int64_t both_groups(GroupSum sum, const std::int8_t* arc, const std::int8_t* all,
+                         const std::int32_t* offset, const std::int32_t* fixed,
+                         std::size_t arc_count, std::size_t count) {
+  return sum(arc, offset, fixed, arc_count) +
+         sum(all, offset + arc_count, fixed + arc_count, count - arc_count);
+}
+
+}  // namespace
+
 std::int64_t correlate_fixed_scalar(const std::int8_t* arc, const std::int8_t* all,
                                     const std::int32_t* offset, const std::int32_t* fixed,
                                     std::size_t arc_count, std::size_t count) {
-  return sum_scalar(arc, offset, fixed, arc_count) +
-         sum_scalar(all, offset + arc_count, fixed + arc_count, count - arc_count);
+  return both_groups(&sum_scalar, arc, all, offset, fixed, arc_count, count);
 }
 
 std::int64_t correlate_fixed_avx2(const std::int8_t* arc, const std::int8_t* all,
                                   const std::int32_t* offset, const std::int32_t* fixed,
                                   std::size_t arc_count, std::size_t count) {
 #if defined(__x86_64__)
-  return sum_avx2(arc, offset, fixed, arc_count) +
-         sum_avx2(all, offset + arc_count, fixed + arc_count, count - arc_count);
+  return both_groups(&sum_avx2, arc, all, offset, fixed, arc_count, count);
 #else
   return correlate_fixed_scalar(arc, all, offset, fixed, arc_count, count);
 #endif
@@ -120,8 +133,7 @@ std::int64_t correlate_fixed_avx512(const std::int8_t* arc, const std::int8_t* a
                                     const std::int32_t* offset, const std::int32_t* fixed,
                                     std::size_t arc_count, std::size_t count) {
 #if defined(__x86_64__)
-  return sum_avx512(arc, offset, fixed, arc_count) +
-         sum_avx512(all, offset + arc_count, fixed + arc_count, count - arc_count);
+  return both_groups(&sum_avx512, arc, all, offset, fixed, arc_count, count);
 #else
   return correlate_fixed_scalar(arc, all, offset, fixed, arc_count, count);
 #endif
