@@ -12,6 +12,7 @@
 #include "gridloc/engine/correlation_search.hpp"
 #include "gridloc/engine/fixed_point_kernel.hpp"
 #include "gridloc/grids/evidence.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "scan_sim.hpp"
 
 namespace gridloc::bench {

@@ -1,5 +1,5 @@
 /// BM_Scaling*: how CorrelationEstimator::estimate() scales, for exhaustive, multires and bnb,
-/// on 360-degree laser scans simulated by scan_sim.hpp (max range 8 m, 1 cm noise). One
+/// on 360-degree laser scans simulated by simulate_scan (max range 8 m, 1 cm noise). One
 /// iteration is one estimate() of the same observation in the same window (deterministic).
 /// - BM_ScalingBeams/<strategy>/beams:<n>: apartment_small, truth kTruth, window +-0.5 m,
 ///   +-0.3 rad around a prior kPriorOffset away, 0.05 m and 0.005 rad steps (121 headings,
@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "scan_sim.hpp"
 
 namespace gridloc::bench {

@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "gridloc/sensors/segment_world.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
@@ -21,48 +22,17 @@ namespace {
 
 using Points = std::vector<Eigen::Vector2d>;
 
-struct Wall {
-  Eigen::Vector2d a, b;
-};
-
-/// A 10 m x 2 m hallway with a door recess, an alcove, a pillar on the wall and a column.
-std::vector<Wall> hallway() {
-  const auto w = [](double ax, double ay, double bx, double by) {
-    return Wall{{ax, ay}, {bx, by}};
-  };
-  return {// top wall with a door recess
-          w(-4, 1, 1, 1), w(1, 1, 1, 1.6), w(1, 1.6, 2, 1.6), w(2, 1.6, 2, 1), w(2, 1, 6, 1),
-          // end walls
-          w(6, 1, 6, -1), w(-4, -1, -4, 1),
-          // bottom wall with an alcove and a pillar
-          w(6, -1, 3.8, -1), w(3.8, -1, 3.8, -1.5), w(3.8, -1.5, 3, -1.5), w(3, -1.5, 3, -1),
-          w(3, -1, -1.2, -1), w(-1.2, -1, -1.2, -0.7), w(-1.2, -0.7, -1.5, -0.7),
-          w(-1.5, -0.7, -1.5, -1), w(-1.5, -1, -4, -1),
-          // a square column
-          w(-2.5, 0.2, -2.2, 0.2), w(-2.2, 0.2, -2.2, 0.5), w(-2.2, 0.5, -2.5, 0.5),
-          w(-2.5, 0.5, -2.5, 0.2)};
-}
-
-/// A noise-free 360 deg scan at `pose` (0.5 deg steps like seed 004's sensor), points in the
-/// robot frame, ordered by bearing.
+/// A noise-free 360 deg scan at `pose` of seed004_hallway() (0.5 deg steps like seed 004's
+/// sensor, 8 m max range), the returns as points in the robot frame, ordered by bearing.
 Points scan_at(const Pose2& pose) {
-  const auto walls = hallway();
+  static const std::vector<WallSegment> walls = seed004_hallway();
+  const RangeScan scan =
+      simulate_segment_scan(walls, pose, 720, deg2rad(-180.0), deg2rad(0.5), 8.0);
   Points out;
-  const Eigen::Vector2d o(pose.x, pose.y);
-  for (int k = 0; k < 720; ++k) {
-    const double bearing = deg2rad(-180.0 + 0.5 * k);
-    const Eigen::Vector2d d(std::cos(pose.theta + bearing), std::sin(pose.theta + bearing));
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& w : walls) {
-      const Eigen::Vector2d e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d ao = w.a - o;
-      const double t = (ao.x() * e.y() - ao.y() * e.x()) / den;
-      const double u = (ao.x() * d.y() - ao.y() * d.x()) / den;
-      if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-    if (best < 8.0) out.emplace_back(best * std::cos(bearing), best * std::sin(bearing));
+  for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
+    const double r = scan.ranges[k];
+    if (r < scan.max_range)
+      out.emplace_back(r * std::cos(scan.angles[k]), r * std::sin(scan.angles[k]));
   }
   return out;
 }
@@ -223,6 +193,8 @@ TEST(RobustIcp, HuberRejectsScatteredOutliersThatLeastSquaresFollows) {
   // stands between them and the estimate.
   const Points ref = scan_at({0, 0, 0});
   IcpOptions huber;
+  // A 2 m reach: the default 0.5 m already keeps most outliers out, for both estimators.
+  huber.max_correspondence_m = 2.0;
   huber.min_segment_points = 1;
   huber.use_complexity = false;
   IcpOptions plain = huber;
@@ -242,11 +214,14 @@ TEST(RobustIcp, HuberRejectsAppearingObstacles) {
   // current scan, in four runs, is pulled 20-60 % closer, as if obstacles had appeared; these
   // runs form long segments that segmentation keeps, so only Huber can reject them.
   const Points ref = scan_at({0, 0, 0});
-  IcpOptions plain;
+  // A 2 m reach: the default 0.5 m already keeps most phantoms out, for both estimators.
+  IcpOptions wide;
+  wide.max_correspondence_m = 2.0;
+  IcpOptions plain = wide;
   plain.robust = false;
   for (unsigned seed : {4u, 5u, 6u, 7u}) {
     const Points cur = with_appearances(scan_at(kMotion), 0.30, seed);
-    const IcpResult r = timed_match(ref, cur, IcpOptions{}, "30% appearing obstacles, defaults");
+    const IcpResult r = timed_match(ref, cur, wide, "30% appearing obstacles, Huber");
     EXPECT_LT(pos_err(r.pose, kMotion), kRobustXy) << "seed " << seed;
     EXPECT_LT(rad2deg(ang_err(r.pose, kMotion)), kRobustThetaDeg) << "seed " << seed;
     const IcpResult p = timed_match(ref, cur, plain, "30% appearing obstacles, least squares");
