@@ -51,6 +51,10 @@ TEST(SlamRelations, ReadsAndPairsByTimestamp) {
   const CarmenLog coarse = parse_carmen_log(coarse_text, "coarse");
   EXPECT_EQ(coarse.lasers[0].timestamp_resolution, 0.1);
   ASSERT_EQ(pair_relations(rel, coarse, 100.0).size(), 1u);  // 110.0 -> 111.5
+  // Two relation times that land on one coarse scan give no pair: 110.0 and 110.04 both read
+  // as the scan at 10.0.
+  const std::vector<SlamRelation> same = {{110.0, 110.04, {0.3, 0, 0}, 1}};
+  EXPECT_TRUE(pair_relations(same, coarse, 100.0).empty());
 }
 
 TEST(SlamRelations, Errors) {
@@ -82,6 +86,7 @@ TEST(SlamRelations, PairsTheIntelRelationsWithItsScans) {
   EXPECT_GE(pairs.size(), 90u);
   EXPECT_LE(pairs.size(), 130u);
   for (const RelationPair& p : pairs) {
+    EXPECT_NE(p.first, p.second);
     const LaserRecord& a = log.lasers[p.first];
     const LaserRecord& b = log.lasers[p.second];
     EXPECT_LE(std::abs(a.timestamp + 976052857.337311 - p.relation.t1),

@@ -66,7 +66,11 @@ std::vector<RelationPair> pair_relations(const std::vector<SlamRelation>& relati
   std::vector<RelationPair> pairs;
   for (const SlamRelation& r : relations) {
     RelationPair p{r, 0, 0};
-    if (nearest(r.t1, p.first) && nearest(r.t2, p.second)) pairs.push_back(p);
+    // Both ends on one scan (a coarse timestamp covering two relation times) say nothing of
+    // the motion between them: dropped.
+    if (nearest(r.t1, p.first) && nearest(r.t2, p.second) && p.first != p.second) {
+      pairs.push_back(p);
+    }
   }
   return pairs;
 }

@@ -30,7 +30,7 @@ struct RelationPair {
 /// The relations whose t1 and t2 both lie within `tolerance_s` (or half the unit of the last
 /// digit the log printed, when coarser) of a scan's timestamp plus `offset_s` (relations use
 /// absolute time, some logs relative time: Intel's offset is 976052857.337311 s), with the
-/// nearest scans.
+/// nearest scans. A relation whose two ends fall on the same scan is left out.
 std::vector<RelationPair> pair_relations(const std::vector<SlamRelation>& relations,
                                          const CarmenLog& log, double offset_s,
                                          double tolerance_s = 0.002);
