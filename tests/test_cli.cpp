@@ -316,19 +316,25 @@ TEST_F(Cli, RelationsOnTheIntelLog) {
       run_cli(dir, "relations --log " + quote(dir.file("none.log")) + " --relations " + quote(rel)),
       "not found");
   expect_cli_error(run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
-                                    " --estimator correlation"),
-                   "--estimator");
+                                    " --estimator particles"),
+                   "icp, correlation or correlation+icp");
   if (!std::filesystem::exists(log)) GTEST_SKIP() << "../shared is absent: " << log;
   const CliRun r = run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
                                     " --time-offset 976052857.337311 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j.at("pairs").get<int>(), 118);
+  // 118 relations fall on scans; 12 of them put both ends on one scan and are dropped.
+  EXPECT_EQ(j.at("pairs").get<int>(), 106);
   for (const char* key : {"translation_error_m", "rotation_error_deg"}) {
     EXPECT_TRUE(j.at(key).at("mean").is_number()) << r.out;
     EXPECT_TRUE(j.at(key).at("std").is_number()) << r.out;
   }
-  EXPECT_LE(j.at("failures").get<int>(), 118);
+  // Measured: 2.5 cm, 0.58 deg and 5 failures (README "Real laser data"); the bounds catch a
+  // matcher that stops working on real scans, as the first version did (23 cm, 58 failures).
+  EXPECT_LT(j.at("translation_error_m").at("mean").get<double>(), 0.05) << r.out;
+  EXPECT_LT(j.at("rotation_error_deg").at("mean").get<double>(), 1.0) << r.out;
+  EXPECT_LE(j.at("failures").get<int>(), 12) << r.out;
+  EXPECT_LE(j.at("not_converged").get<int>(), j.at("failures").get<int>()) << r.out;
 }
 
 TEST_F(Cli, LocalizeGivesTheVerdict) {

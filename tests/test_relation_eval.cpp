@@ -99,7 +99,7 @@ TEST(RelationEval, IcpRecoversExactRelationsFromANoisyPrior) {
   RelationEvalOptions o;
   o.prior_noise_xy = 0.05;
   o.prior_noise_theta = 0.05;
-  const RelationEvalReport r = evaluate_relations_icp(log, pairs, o);
+  const RelationEvalReport r = evaluate_relations(log, pairs, o);
   EXPECT_EQ(r.pairs, 3);
   EXPECT_EQ(r.failures, 0);
   EXPECT_LT(r.translation_error_m.mean, 1e-3);
@@ -109,10 +109,10 @@ TEST(RelationEval, IcpRecoversExactRelationsFromANoisyPrior) {
 TEST(RelationEval, Errors) {
   CarmenLog log;
   std::vector<RelationPair> pairs;
-  test::expect_error([&] { evaluate_relations_icp(log, pairs); }, {"no relation"});
+  test::expect_error([&] { evaluate_relations(log, pairs); }, {"no relation"});
   synthetic({{2.0, 1.5, 0.1}, {2.3, 1.7, 0.25}}, log, pairs);
   pairs[0].second = 7;
-  test::expect_error([&] { evaluate_relations_icp(log, pairs); }, {"scan 7", "log of 2"});
+  test::expect_error([&] { evaluate_relations(log, pairs); }, {"scan 7", "log of 2"});
 }
 
 }  // namespace

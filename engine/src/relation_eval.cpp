@@ -6,6 +6,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/rng.hpp"
+#include "gridloc/sensors/scan_map.hpp"
 
 namespace gridloc {
 namespace {
@@ -22,26 +23,75 @@ ErrorStats stats(const std::vector<double>& v) {
 
 }  // namespace
 
-std::vector<Eigen::Vector2d> scan_returns(const RangeScan& scan) {
-  std::vector<Eigen::Vector2d> points;
-  for (std::size_t k = 0; k < scan.ranges.size() && k < scan.angles.size(); ++k) {
-    const double r = scan.ranges[k];
-    if (r < scan.max_range && r > 0.0) {
-      points.emplace_back(r * std::cos(scan.angles[k]), r * std::sin(scan.angles[k]));
-    }
-  }
-  return points;
-}
-
 Pose2 relative_pose(const Pose2& a, const Pose2& b) {
   const double c = std::cos(a.theta), s = std::sin(a.theta);
   const double dx = b.x - a.x, dy = b.y - a.y;
   return {c * dx + s * dy, -s * dx + c * dy, normalize_angle(b.theta - a.theta)};
 }
 
-RelationEvalReport evaluate_relations_icp(const CarmenLog& log,
-                                          const std::vector<RelationPair>& pairs,
-                                          const RelationEvalOptions& o) {
+std::string to_string(PairMatcher matcher) {
+  switch (matcher) {
+    case PairMatcher::Icp:
+      return "icp";
+    case PairMatcher::Correlation:
+      return "correlation";
+    case PairMatcher::CorrelationIcp:
+      return "correlation+icp";
+  }
+  return "?";
+}
+
+PairMatcher parse_pair_matcher(const std::string& name) {
+  for (PairMatcher m : {PairMatcher::Icp, PairMatcher::Correlation, PairMatcher::CorrelationIcp}) {
+    if (to_string(m) == name) return m;
+  }
+  throw Error("the estimator must be icp, correlation or correlation+icp, not '" + name + "'");
+}
+
+Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
+                 const RelationEvalOptions& o, bool* converged) {
+  if (converged != nullptr) *converged = true;
+  const auto ref_points = scan_returns(reference);
+  const auto cur_points = scan_returns(current);
+  if (o.matcher == PairMatcher::Icp) {
+    const IcpResult r = match_scans(ref_points, cur_points, prior, o.icp);
+    if (converged != nullptr) *converged = r.converged;
+    return r.pose;
+  }
+  // The reference scan as a map whose world frame is the reference robot's frame.
+  // Its margin keeps the whole search window on the map.
+  const double half_xy = o.prior_noise_xy + o.window_margin_xy;
+  OccupancyMap map = scan_occupancy_map(reference, o.map_resolution,
+                                        0.5 + std::hypot(prior.x, prior.y) + 1.5 * half_xy);
+  // The current scan's max range cut to its farthest return: the padding then covers what
+  // the scan reaches, not the logger's 80 m "no return".
+  RangeScan cur = current;
+  double farthest = 0.0;
+  for (const auto& p : cur_points) farthest = std::max(farthest, p.norm());
+  cur.max_range = std::min(cur.max_range, farthest + o.map_resolution);
+  CorrelationOptions co = o.correlation;
+  co.resolution = o.map_resolution;
+  co.reach_m = cur.max_range;
+  const CorrelationEstimator estimator(std::move(map), co);
+  Observation obs;
+  obs.scan = cur;
+  SearchWindow w = estimator.global_window(obs);  // for its heading step
+  w.center = prior;
+  w.half_xy = half_xy;
+  w.half_theta = o.prior_noise_theta + o.window_margin_theta;
+  w.step_xy = o.map_resolution;
+  const Pose2 coarse = estimator.estimate(obs, w).pose;
+  if (o.matcher == PairMatcher::Correlation) return coarse;
+  const IcpResult r = match_scans(ref_points, cur_points, coarse, o.icp);
+  if (r.converged && std::hypot(r.pose.x - coarse.x, r.pose.y - coarse.y) <= o.refine_max_shift_m &&
+      std::abs(normalize_angle(r.pose.theta - coarse.theta)) <= o.refine_max_turn_rad) {
+    return r.pose;
+  }
+  return coarse;
+}
+
+RelationEvalReport evaluate_relations(const CarmenLog& log, const std::vector<RelationPair>& pairs,
+                                      const RelationEvalOptions& o) {
   if (pairs.empty()) throw Error("relations: no relation falls on two scans of the log");
   Rng rng(o.seed);
   std::vector<double> trans, rot, ms;
@@ -59,15 +109,17 @@ RelationEvalReport evaluate_relations_icp(const CarmenLog& log,
     prior.theta =
         normalize_angle(prior.theta + rng.uniform(-o.prior_noise_theta, o.prior_noise_theta));
     const auto t0 = std::chrono::steady_clock::now();
-    const IcpResult r = match_scans(scan_returns(a.scan), scan_returns(b.scan), prior, o.icp);
+    bool converged = true;
+    const Pose2 estimate = match_pair(a.scan, b.scan, prior, o, &converged);
     ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     // The benchmark's error: the estimate seen from the true motion.
-    const Pose2 e = relative_pose(p.relation.motion, r.pose);
+    const Pose2 e = relative_pose(p.relation.motion, estimate);
     const double dt = std::hypot(e.x, e.y), dr = std::abs(e.theta);
     trans.push_back(dt);
     rot.push_back(rad2deg(dr));
-    if (!r.converged || dt > o.failure_xy || dr > o.failure_theta) ++report.failures;
+    if (!converged) ++report.not_converged;
+    if (!converged || dt > o.failure_xy || dr > o.failure_theta) ++report.failures;
   }
   report.pairs = static_cast<int>(pairs.size());
   report.translation_error_m = stats(trans);

@@ -3,13 +3,17 @@
 // (eq. (5)-(6)), and an iterative solve of the weighted normal equations (eq. (7)).
 #include "gridloc/engine/robust_icp.hpp"
 
+#include "gridloc/engine/map_contour.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "point_buckets.hpp"
 
 namespace gridloc {
 namespace {
@@ -30,21 +34,34 @@ void check_positive(double v, const char* field) {
   }
 }
 
-void check_options(const IcpOptions& o) {
+}  // namespace
+
+void validate(const IcpOptions& o) {
   check_positive(o.gap_m, "gap_m");
   check_positive(o.resolution_m, "resolution_m");
   check_positive(o.huber_k, "huber_k");
   check_positive(o.min_scale_m, "min_scale_m");
   check_positive(o.max_correspondence_m, "max_correspondence_m");
+  check_positive(o.fit_distance_m, "fit_distance_m");
+  if (!(o.breakpoint_angle_rad >= 0.0) || o.breakpoint_angle_rad >= std::numbers::pi / 2) {
+    throw Error("IcpOptions.breakpoint_angle_rad must lie in [0, pi/2), got " +
+                std::to_string(o.breakpoint_angle_rad));
+  }
   if (o.min_segment_points < 1) throw Error("IcpOptions.min_segment_points must be >= 1, got 0");
   if (o.max_iterations < 1) {
     throw Error("IcpOptions.max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
+  }
+  if (!(o.settled_xy_m >= 0.0) || !(o.settled_theta_rad >= 0.0)) {
+    throw Error("IcpOptions.settled_xy_m and settled_theta_rad must be >= 0, got " +
+                std::to_string(o.settled_xy_m) + " and " + std::to_string(o.settled_theta_rad));
   }
   if (!(o.converged_xy_m >= 0.0) || !(o.converged_theta_rad >= 0.0)) {
     throw Error("IcpOptions.converged_xy_m and converged_theta_rad must be >= 0, got " +
                 std::to_string(o.converged_xy_m) + " and " + std::to_string(o.converged_theta_rad));
   }
 }
+
+namespace {
 
 /// Total-least-squares line of points[begin, end): centroid, unit direction, mean |distance|.
 void fit_line(const std::vector<Eigen::Vector2d>& points, Segment& s) {
@@ -68,71 +85,6 @@ void fit_line(const std::vector<Eigen::Vector2d>& points, Segment& s) {
   s.mean_distance_m = sum / n;  // seed 004 eq. (10): d_m
 }
 
-/// Uniform-grid buckets of the reference points (cell = max correspondence distance), so a
-/// 3 x 3 block of cells holds every point within that distance of a query.
-class BucketGrid {
- public:
-  BucketGrid(const std::vector<Eigen::Vector2d>& points, const std::vector<int>& usable,
-             double cell)
-      : points_(points), cell_(cell) {
-    lo_ = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector2d hi = -lo_;
-    for (int i : usable) {
-      lo_ = lo_.cwiseMin(points[i]);
-      hi = hi.cwiseMax(points[i]);
-    }
-    // At most 512 cells a side: a cell wider than the search radius still covers it.
-    cell_ = std::max(cell_, (hi - lo_).maxCoeff() / 512.0);
-    nx_ = static_cast<int>((hi.x() - lo_.x()) / cell_) + 1;
-    ny_ = static_cast<int>((hi.y() - lo_.y()) / cell_) + 1;
-    start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-    for (int i : usable) ++start_[cell_index(points[i]) + 1];
-    for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
-    index_.resize(usable.size());
-    std::vector<int> fill(start_.begin(), start_.end() - 1);
-    for (int i : usable) index_[fill[cell_index(points[i])]++] = i;  // ascending within a cell
-  }
-
-  /// Index of the nearest usable point within `max_dist`, or -1; ties go to the lowest index.
-  int nearest(const Eigen::Vector2d& q, double max_dist) const {
-    // Clamped in double first, so a query far outside the grid cannot overflow the cast.
-    const int cx = static_cast<int>(
-        std::clamp(std::floor((q.x() - lo_.x()) / cell_), -2.0, static_cast<double>(nx_ + 1)));
-    const int cy = static_cast<int>(
-        std::clamp(std::floor((q.y() - lo_.y()) / cell_), -2.0, static_cast<double>(ny_ + 1)));
-    int best = -1;
-    double best_d2 = max_dist * max_dist;
-    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny_ - 1); ++y) {
-      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx_ - 1); ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
-        for (int k = start_[c]; k < start_[c + 1]; ++k) {
-          const int i = index_[k];
-          const double d2 = (points_[i] - q).squaredNorm();
-          if (d2 < best_d2 || (d2 == best_d2 && best >= 0 && i < best)) {
-            best_d2 = d2;
-            best = i;
-          }
-        }
-      }
-    }
-    return best;
-  }
-
- private:
-  std::size_t cell_index(const Eigen::Vector2d& p) const {
-    const int x = std::min(static_cast<int>((p.x() - lo_.x()) / cell_), nx_ - 1);
-    const int y = std::min(static_cast<int>((p.y() - lo_.y()) / cell_), ny_ - 1);
-    return static_cast<std::size_t>(y) * nx_ + x;
-  }
-
-  const std::vector<Eigen::Vector2d>& points_;
-  double cell_;
-  Eigen::Vector2d lo_;
-  int nx_ = 1, ny_ = 1;
-  std::vector<int> start_;
-  std::vector<int> index_;
-};
-
 /// One point-to-tangent-line pair: transformed matching point q, tangent normal n, residual r.
 struct Pair {
   Eigen::Vector2d q;
@@ -140,34 +92,44 @@ struct Pair {
   double r;
 };
 
-struct Reference {
+/// What the matching points are matched against: points with a bucket index and a tangent
+/// rule. A scan (segment_of set) takes the chord to a neighbour in the same segment; a map
+/// contour (normals set) has a fixed normal per point.
+struct Model {
   const std::vector<Eigen::Vector2d>& points;
-  std::vector<int> segment_of;  // segment id of each point
-  BucketGrid grid;
+  const detail::PointBuckets& grid;
+  const std::vector<int>* segment_of = nullptr;
+  const std::vector<Eigen::Vector2d>* normals = nullptr;
 };
 
-/// Pairs of the matching points `src` under pose (R, t) with the reference's tangent lines.
-/// The tangent at the nearest reference point i is the chord to its neighbour i-1 or i+1 in
-/// the same segment, whichever line passes closer to q (seed 004 eq. (3): the tangential line
-/// of the other curve; the one-sided chord keeps a corner from bending the tangent).
-void make_pairs(const Reference& ref, const std::vector<Eigen::Vector2d>& src,
+/// Pairs of the matching points `src` under pose (R, t) with the model's tangent lines.
+/// For a scan the tangent at the nearest reference point i is the chord to its neighbour i-1
+/// or i+1 in the same segment, whichever line passes closer to q (seed 004 eq. (3): the
+/// tangential line of the other curve; the one-sided chord keeps a corner from bending it).
+void make_pairs(const Model& model, const std::vector<Eigen::Vector2d>& src,
                 const Eigen::Matrix2d& R, const Eigen::Vector2d& t, double max_dist,
                 std::vector<Pair>& pairs) {
   pairs.clear();
-  const int n = static_cast<int>(ref.points.size());
+  const int n = static_cast<int>(model.points.size());
   for (const auto& p : src) {
     const Eigen::Vector2d q = R * p + t;
-    const int i = ref.grid.nearest(q, max_dist);
+    const int i = model.grid.nearest(q, max_dist);
     if (i < 0) continue;
+    if (model.normals != nullptr) {
+      const Eigen::Vector2d& normal = (*model.normals)[i];
+      pairs.push_back({q, normal, normal.dot(q - model.points[i])});
+      continue;
+    }
+    const std::vector<int>& segment_of = *model.segment_of;
     double best_r = std::numeric_limits<double>::infinity();
     Eigen::Vector2d best_n = Eigen::Vector2d::Zero();
     for (int j : {i - 1, i + 1}) {
-      if (j < 0 || j >= n || ref.segment_of[j] != ref.segment_of[i]) continue;
-      const Eigen::Vector2d d = ref.points[j] - ref.points[i];
+      if (j < 0 || j >= n || segment_of[j] != segment_of[i]) continue;
+      const Eigen::Vector2d d = model.points[j] - model.points[i];
       const double len = d.norm();
       if (len <= 0.0) continue;
       const Eigen::Vector2d normal(-d.y() / len, d.x() / len);
-      const double r = normal.dot(q - ref.points[i]);
+      const double r = normal.dot(q - model.points[i]);
       if (std::abs(r) < std::abs(best_r)) {
         best_r = r;
         best_n = normal;
@@ -177,7 +139,29 @@ void make_pairs(const Reference& ref, const std::vector<Eigen::Vector2d>& src,
   }
 }
 
+constexpr std::size_t kSettleSteps = 5;
+
+/// Every pose of `history` within settled_xy_m and settled_theta_rad of the last.
+bool settled(const std::vector<Pose2>& history, const IcpOptions& o) {
+  const Pose2& last = history.back();
+  return std::all_of(history.begin(), history.end(), [&](const Pose2& p) {
+    return std::hypot(p.x - last.x, p.y - last.y) <= o.settled_xy_m &&
+           std::abs(normalize_angle(p.theta - last.theta)) <= o.settled_theta_rad;
+  });
+}
+
 }  // namespace
+
+std::vector<Eigen::Vector2d> scan_returns(const RangeScan& scan) {
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t k = 0; k < scan.ranges.size() && k < scan.angles.size(); ++k) {
+    const double r = scan.ranges[k];
+    if (r < scan.max_range && r > 0.0) {
+      points.emplace_back(r * std::cos(scan.angles[k]), r * std::sin(scan.angles[k]));
+    }
+  }
+  return points;
+}
 
 double shape_complexity(double mean_distance_m, double resolution_m) {
   // Seed 004 eq. (11): C_f = (d_m + R_m) / (10 R_m), and 1 where that exceeds 1. A straight
@@ -196,15 +180,39 @@ std::size_t matching_point_count(double complexity, std::size_t segment_size) {
 }
 
 std::vector<Segment> segment_scan(const std::vector<Eigen::Vector2d>& points, double gap_m,
-                                  double resolution_m) {
+                                  double resolution_m, double breakpoint_angle_rad) {
   check_positive(gap_m, "gap_m");
   check_positive(resolution_m, "resolution_m");
+  if (!(breakpoint_angle_rad >= 0.0) || breakpoint_angle_rad >= std::numbers::pi / 2) {
+    throw Error("IcpOptions.breakpoint_angle_rad must lie in [0, pi/2), got " +
+                std::to_string(breakpoint_angle_rad));
+  }
+  // The adaptive part of the gap: at range r and beam step d, neighbours on a wall seen at
+  // grazing angle lambda lie r sin(d) / sin(lambda - d) apart (the adaptive breakpoint
+  // detector of Borges and Aldon). d is the scan's median step between consecutive points.
+  double growth = 0.0;
+  if (breakpoint_angle_rad > 0.0 && points.size() >= 2) {
+    std::vector<double> steps;
+    steps.reserve(points.size() - 1);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const Eigen::Vector2d& a = points[i - 1];
+      const Eigen::Vector2d& b = points[i];
+      steps.push_back(std::abs(std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b))));
+    }
+    const auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+    std::nth_element(steps.begin(), mid, steps.end());
+    const double d = *mid;
+    if (d < breakpoint_angle_rad) growth = std::sin(d) / std::sin(breakpoint_angle_rad - d);
+  }
   std::vector<Segment> segments;
   std::size_t begin = 0;
   for (std::size_t i = 1; i <= points.size(); ++i) {
     // Seed 004 §3.2: points within the gap (8 cm = 2 pixels) of the previous one continue the
     // segment.
-    if (i < points.size() && (points[i] - points[i - 1]).norm() <= gap_m) continue;
+    if (i < points.size() &&
+        (points[i] - points[i - 1]).norm() <= gap_m + growth * points[i - 1].norm()) {
+      continue;
+    }
     if (i > begin) {
       Segment s;
       s.begin = begin;
@@ -244,10 +252,157 @@ double residual_scale(const std::vector<double>& r, HuberScale rule, double floo
   return std::max(sigma, floor_m);
 }
 
+namespace {
+
+void check_pose(const Pose2& initial) {
+  if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
+    throw Error("match_scans: initial pose is not finite");
+  }
+}
+
+/// The matching points of `current`: N_s per segment spread evenly along it (seed 004 §3.2).
+std::vector<Eigen::Vector2d> matching_points(const std::vector<Eigen::Vector2d>& current,
+                                             const IcpOptions& options) {
+  std::vector<Segment> kept;
+  std::size_t kept_points = 0, base_total = 0;
+  for (const auto& seg :
+       segment_scan(current, options.gap_m, options.resolution_m, options.breakpoint_angle_rad)) {
+    if (seg.size() < options.min_segment_points) continue;
+    kept.push_back(seg);
+    kept_points += seg.size();
+    base_total += options.use_complexity ? seg.matching_points : seg.size();
+  }
+  // A sparse scan (a 1 degree laser) keeps too few points at C_f * N_m: every segment's share
+  // grows by one factor until min_matching_points are drawn, C_f still setting the density.
+  const std::size_t wanted = std::min(options.min_matching_points, kept_points);
+  const double boost = base_total > 0 && base_total < wanted
+                           ? static_cast<double>(wanted) / static_cast<double>(base_total)
+                           : 1.0;
+  std::vector<Eigen::Vector2d> src;
+  for (const auto& seg : kept) {
+    std::size_t ns = seg.size();
+    if (options.use_complexity) {
+      ns = std::min(seg.size(), static_cast<std::size_t>(std::ceil(
+                                    static_cast<double>(seg.matching_points) * boost - 1e-9)));
+    }
+    for (std::size_t j = 0; j < ns; ++j) {
+      src.push_back(current[seg.begin + (2 * j + 1) * seg.size() / (2 * ns)]);
+    }
+  }
+  if (src.size() < 3) {
+    throw Error("match_scans: current scan gives " + std::to_string(src.size()) +
+                " matching points, needs at least 3 (check gap_m and min_segment_points)");
+  }
+  return src;
+}
+
+/// The robust iteration (seed 004 eq. (5)-(7)) of `src` against `model` from `initial`.
+IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, const Pose2& initial,
+                const IcpOptions& options) {
+  IcpResult result;
+  double theta = initial.theta;
+  Eigen::Vector2d t(initial.x, initial.y);
+  std::vector<Pair> pairs;
+  std::vector<double> residuals;
+  std::vector<Pose2> history;
+  double sigma = options.min_scale_m;
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(theta).toRotationMatrix();
+    make_pairs(model, src, R, t, options.max_correspondence_m, pairs);
+    if (pairs.size() < 3) break;
+    residuals.resize(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) residuals[k] = pairs[k].r;
+    // sigma of the errors at the pose of the previous step (seed 004 eq. (5)-(6)).
+    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
+
+    // Gauss-Newton on a left increment (dx, dy, dtheta) about the reference origin: the
+    // residual n.(q - m) has gradient (n_x, n_y, n.(-q_y, q_x)). Seed 004 eq. (7) solves the
+    // same weighted normal equations in the linear parameters (a, b, c, d) of eq. (1); the
+    // 3-parameter form keeps the rotation rigid.
+    H.setZero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    for (const auto& p : pairs) {
+      const double w = options.robust ? huber_weight(p.r / sigma, options.huber_k) : 1.0;
+      const Eigen::Vector3d J(p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-p.q.y(), p.q.x())));
+      H.noalias() += w * J * J.transpose();
+      g.noalias() += w * p.r * J;
+    }
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) break;  // degenerate geometry
+    Eigen::Vector3d delta = -ldlt.solve(g);
+    // A step longer than the correspondence reach leaves every pair it was computed from: a
+    // nearly degenerate system (few pairs on one wall) would throw the pose away. Shortened.
+    const double step = delta.head<2>().norm();
+    if (step > options.max_correspondence_m) delta *= options.max_correspondence_m / step;
+    const Eigen::Rotation2Dd dR(delta.z());
+    t = dR * t + delta.head<2>();
+    theta = normalize_angle(theta + delta.z());
+    result.iterations = it + 1;
+    if (delta.head<2>().norm() < options.converged_xy_m &&
+        std::abs(delta.z()) < options.converged_theta_rad) {
+      result.converged = true;
+      break;
+    }
+    // On real scans a few pairs can flip between two tangents forever: the pose then
+    // cycles within a tiny region. Settled when the last kSettleSteps poses lie that close.
+    history.push_back({t.x(), t.y(), theta});
+    if (history.size() > kSettleSteps) history.erase(history.begin());
+    if (history.size() == kSettleSteps && settled(history, options)) {
+      result.converged = true;
+      break;
+    }
+  }
+
+  // Final residuals at the returned pose.
+  make_pairs(model, src, Eigen::Rotation2Dd(theta).toRotationMatrix(), t,
+             options.max_correspondence_m, pairs);
+  result.pose = {t.x(), t.y(), theta};
+  result.pairs = pairs.size();
+  result.matching_points = src.size();
+  if (!pairs.empty()) {
+    residuals.resize(pairs.size());
+    double sum2 = 0.0;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      residuals[k] = pairs[k].r;
+      sum2 += pairs[k].r * pairs[k].r;
+    }
+    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
+    std::size_t inliers = 0;
+    H.setZero();
+    for (const auto& p : pairs) {
+      result.fitting_pairs += std::abs(p.r) <= options.fit_distance_m ? 1 : 0;
+      const bool inlier = std::abs(p.r) <= options.huber_k * sigma;
+      inliers += inlier ? 1 : 0;
+      const Eigen::Vector3d J(p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-p.q.y(), p.q.x())));
+      if (inlier) H.noalias() += J * J.transpose();
+    }
+    result.rms_m = std::sqrt(sum2 / static_cast<double>(pairs.size()));
+    result.inlier_share = static_cast<double>(inliers) / static_cast<double>(pairs.size());
+    // Gauss-Newton covariance sigma^2 H^-1 of the inliers' left increment; infinite along a
+    // direction the pairs do not constrain (a corridor's axis).
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(H);
+    if (inliers >= 3 && lu.isInvertible()) {
+      // The increment turns about the origin; about the pose's position a turn dtheta also
+      // moves it by dtheta * (-y, x).
+      Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+      A(0, 2) = -t.y();
+      A(1, 2) = t.x();
+      result.covariance = A * (sigma * sigma * lu.inverse()) * A.transpose();
+    } else {
+      result.covariance = Eigen::Matrix3d::Identity() * std::numeric_limits<double>::infinity();
+    }
+  }
+  result.scale_m = sigma;
+  return result;
+}
+
+}  // namespace
+
 IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
                       const std::vector<Eigen::Vector2d>& current, const Pose2& initial,
                       const IcpOptions& options) {
-  check_options(options);
+  validate(options);
   if (reference.size() < 3) {
     throw Error("match_scans: reference scan has " + std::to_string(reference.size()) +
                 " points, needs at least 3");
@@ -258,12 +413,11 @@ IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
   }
   check_points(reference, "reference");
   check_points(current, "current");
-  if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
-    throw Error("match_scans: initial pose is not finite");
-  }
+  check_pose(initial);
 
   // Reference: points in segments of >= 2 points carry a tangent (seed 004 eq. (3)).
-  const auto ref_segments = segment_scan(reference, options.gap_m, options.resolution_m);
+  const auto ref_segments =
+      segment_scan(reference, options.gap_m, options.resolution_m, options.breakpoint_angle_rad);
   std::vector<int> segment_of(reference.size(), -1);
   std::vector<int> usable;
   for (std::size_t s = 0; s < ref_segments.size(); ++s) {
@@ -276,87 +430,29 @@ IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
     throw Error("match_scans: reference scan has no segment of 2 or more points within gap_m = " +
                 std::to_string(options.gap_m) + " m");
   }
-  const Reference ref{reference, std::move(segment_of),
-                      BucketGrid(reference, usable, options.max_correspondence_m)};
-
-  // Current: the matching points, N_s per segment spread evenly along it (seed 004 §3.2).
+  const detail::PointBuckets grid(reference, usable, options.max_correspondence_m);
   // Seed 004 puts the control points on the previous curve and the tangents on the current
   // one; here the roles are swapped so the result is directly the pose of `current` in the
   // reference frame (the same problem, with the tangents on the scan we index once).
-  std::vector<Eigen::Vector2d> src;
-  for (const auto& s : segment_scan(current, options.gap_m, options.resolution_m)) {
-    if (s.size() < options.min_segment_points) continue;
-    const std::size_t ns = options.use_complexity ? s.matching_points : s.size();
-    for (std::size_t j = 0; j < ns; ++j) {
-      src.push_back(current[s.begin + (2 * j + 1) * s.size() / (2 * ns)]);
-    }
-  }
-  if (src.size() < 3) {
-    throw Error("match_scans: current scan gives " + std::to_string(src.size()) +
-                " matching points, needs at least 3 (check gap_m and min_segment_points)");
-  }
+  const Model model{reference, grid, &segment_of, nullptr};
+  return solve(model, matching_points(current, options), initial, options);
+}
 
-  IcpResult result;
-  double theta = initial.theta;
-  Eigen::Vector2d t(initial.x, initial.y);
-  std::vector<Pair> pairs;
-  std::vector<double> residuals;
-  double sigma = options.min_scale_m;
-  for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::Matrix2d R = Eigen::Rotation2Dd(theta).toRotationMatrix();
-    make_pairs(ref, src, R, t, options.max_correspondence_m, pairs);
-    if (pairs.size() < 3) break;
-    residuals.resize(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k) residuals[k] = pairs[k].r;
-    // sigma of the errors at the pose of the previous step (seed 004 eq. (5)-(6)).
-    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
-
-    // Gauss-Newton on a left increment (dx, dy, dtheta) about the reference origin: the
-    // residual n.(q - m) has gradient (n_x, n_y, n.(-q_y, q_x)). Seed 004 eq. (7) solves the
-    // same weighted normal equations in the linear parameters (a, b, c, d) of eq. (1); the
-    // 3-parameter form keeps the rotation rigid.
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (const auto& p : pairs) {
-      const double w = options.robust ? huber_weight(p.r / sigma, options.huber_k) : 1.0;
-      const Eigen::Vector3d J(p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-p.q.y(), p.q.x())));
-      H.noalias() += w * J * J.transpose();
-      g.noalias() += w * p.r * J;
-    }
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
-    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) break;  // degenerate geometry
-    const Eigen::Vector3d delta = -ldlt.solve(g);
-    const Eigen::Rotation2Dd dR(delta.z());
-    t = dR * t + delta.head<2>();
-    theta = normalize_angle(theta + delta.z());
-    result.iterations = it + 1;
-    if (delta.head<2>().norm() < options.converged_xy_m &&
-        std::abs(delta.z()) < options.converged_theta_rad) {
-      result.converged = true;
-      break;
-    }
+IcpResult match_scan_to_map(const MapContour& contour, const std::vector<Eigen::Vector2d>& scan,
+                            const Pose2& initial, const IcpOptions& options) {
+  validate(options);
+  if (scan.size() < 3) {
+    throw Error("match_scan_to_map: scan has " + std::to_string(scan.size()) +
+                " points, needs at least 3");
   }
-
-  // Final residuals at the returned pose.
-  make_pairs(ref, src, Eigen::Rotation2Dd(theta).toRotationMatrix(), t,
-             options.max_correspondence_m, pairs);
-  result.pose = {t.x(), t.y(), theta};
-  result.pairs = pairs.size();
-  if (!pairs.empty()) {
-    residuals.resize(pairs.size());
-    double sum2 = 0.0;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      residuals[k] = pairs[k].r;
-      sum2 += pairs[k].r * pairs[k].r;
-    }
-    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
-    std::size_t inliers = 0;
-    for (double r : residuals) inliers += std::abs(r) <= options.huber_k * sigma ? 1 : 0;
-    result.rms_m = std::sqrt(sum2 / static_cast<double>(pairs.size()));
-    result.inlier_share = static_cast<double>(inliers) / static_cast<double>(pairs.size());
+  check_points(scan, "current");
+  check_pose(initial);
+  if (contour.size() < 3) {
+    throw Error("match_scan_to_map: the map has " + std::to_string(contour.size()) +
+                " contour points with a normal, needs at least 3");
   }
-  result.scale_m = sigma;
-  return result;
+  const Model model{contour.points(), contour.buckets(), nullptr, &contour.normals()};
+  return solve(model, matching_points(scan, options), initial, options);
 }
 
 }  // namespace gridloc

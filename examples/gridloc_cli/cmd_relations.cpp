@@ -20,16 +20,12 @@ struct RelationsArgs {
 };
 
 void run(const RelationsArgs& a) {
-  // The correlation estimators need a map built from the reference scan; only ICP matches
-  // two scans directly so far.
-  if (a.estimator != "icp") {
-    throw Error("--estimator must be icp (the only scan-to-scan matcher so far), not '" +
-                a.estimator + "'");
-  }
+  RelationEvalOptions options = a.options;
+  options.matcher = parse_pair_matcher(a.estimator);
   const CarmenLog log = load_carmen_log(a.log);
   const auto relations = load_slam_relations(a.relations);
   const auto pairs = pair_relations(relations, log, a.time_offset, a.tolerance);
-  const RelationEvalReport r = evaluate_relations_icp(log, pairs, a.options);
+  const RelationEvalReport r = evaluate_relations(log, pairs, options);
   const nlohmann::json j = {
       {"estimator", a.estimator},
       {"relations", relations.size()},
@@ -39,6 +35,7 @@ void run(const RelationsArgs& a) {
       {"rotation_error_deg",
        {{"mean", r.rotation_error_deg.mean}, {"std", r.rotation_error_deg.std}}},
       {"failures", r.failures},
+      {"not_converged", r.not_converged},
       {"median_ms", r.median_ms},
       {"seed", a.options.seed}};
   if (a.json) {
@@ -62,7 +59,9 @@ void add_relations(CLI::App& app) {
   cmd->add_option("--log", a->log, "CARMEN log (FLASER / ROBOTLASER1 lines)")->required();
   cmd->add_option("--relations", a->relations, "relations file: t1 t2 x y z roll pitch yaw")
       ->required();
-  cmd->add_option("--estimator", a->estimator, "icp (seed 004's robust ICP)")
+  cmd->add_option("--estimator", a->estimator,
+                  "icp (seed 004's robust ICP) | correlation (the search on the reference "
+                  "scan's map) | correlation+icp")
       ->capture_default_str();
   cmd->add_option("--time-offset", a->time_offset,
                   "added to the log's times to reach the relations' (Intel: 976052857.337311)")
@@ -75,6 +74,28 @@ void add_relations(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--prior-noise-theta", a->options.prior_noise_theta,
                   "uniform noise added to the logged motion's heading (rad)")
+      ->capture_default_str();
+  IcpOptions& icp = a->options.icp;
+  cmd->add_option("--icp-gap", icp.gap_m, "ICP segmentation gap (m)")->capture_default_str();
+  cmd->add_option("--icp-min-segment", icp.min_segment_points,
+                  "ICP: segments with fewer points give no matching points")
+      ->capture_default_str();
+  cmd->add_flag("!--icp-all-points", icp.use_complexity,
+                "ICP: match every point, not N_s = C_f * N_m per segment");
+  cmd->add_option("--icp-max-correspondence", icp.max_correspondence_m,
+                  "ICP: pairs farther apart are not used (m)")
+      ->capture_default_str();
+  cmd->add_option("--icp-converged", icp.converged_xy_m,
+                  "ICP: stop when an update moves less than this (m; the same in rad turns)")
+      ->each([&icp](const std::string&) { icp.converged_theta_rad = icp.converged_xy_m; })
+      ->capture_default_str();
+  cmd->add_option("--icp-breakpoint-angle", icp.breakpoint_angle_rad,
+                  "ICP: grazing angle of the range-adaptive gap (rad; 0: fixed gap)")
+      ->capture_default_str();
+  cmd->add_option("--icp-min-matching-points", icp.min_matching_points,
+                  "ICP: at least this many matching points per scan")
+      ->capture_default_str();
+  cmd->add_option("--icp-max-iterations", icp.max_iterations, "ICP iteration limit")
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON");
   cmd->callback([a] { run(*a); });

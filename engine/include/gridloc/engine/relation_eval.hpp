@@ -7,13 +7,27 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/engine/correlation_estimator.hpp"
 #include "gridloc/engine/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 #include "gridloc/sensors/slam_relations.hpp"
 
 namespace gridloc {
 
+/// How a relation's two scans are matched.
+enum class PairMatcher {
+  Icp,             ///< seed 004's robust ICP (match_scans) from the prior
+  Correlation,     ///< the correlation search of the current scan on the reference scan's map
+  CorrelationIcp,  ///< the correlation search, then ICP from its winner
+};
+
+/// "icp", "correlation" or "correlation+icp".
+std::string to_string(PairMatcher matcher);
+/// The matcher named by to_string(); gridloc::Error naming the choices otherwise.
+PairMatcher parse_pair_matcher(const std::string& name);
+
 struct RelationEvalOptions {
+  PairMatcher matcher = PairMatcher::Icp;
   std::uint64_t seed = 1;
   /// The prior is the logged motion (the logs hold SLAM-corrected poses, not raw odometry)
   /// plus uniform noise within these bounds on x, y (m) and theta (rad).
@@ -23,6 +37,17 @@ struct RelationEvalOptions {
   double failure_xy = 0.2;
   double failure_theta = 0.0872664625997;  ///< 5 deg
   IcpOptions icp;
+  /// The correlation matchers: the reference scan becomes a map of this resolution
+  /// (scan_occupancy_map), searched with `correlation` (branch and bound, hits) over a window
+  /// around the prior covering its noise plus window_margin_xy and window_margin_theta, in
+  /// heading steps that move the farthest return by about a cell.
+  double map_resolution = 0.05;
+  double window_margin_xy = 0.1;
+  double window_margin_theta = 0.0349065850399;  ///< 2 deg
+  CorrelationOptions correlation;
+  /// Correlation + ICP: ICP's pose is kept when it converged within these of the search's.
+  double refine_max_shift_m = 0.3;
+  double refine_max_turn_rad = 0.0872664625997;  ///< 5 deg
 };
 
 /// Mean and standard deviation.
@@ -36,19 +61,21 @@ struct RelationEvalReport {
   ErrorStats translation_error_m;  ///< |translation of relation^-1 * estimate|, over all pairs
   ErrorStats rotation_error_deg;   ///< |rotation of relation^-1 * estimate|
   int failures = 0;
-  double median_ms = 0.0;  ///< per match
+  int not_converged = 0;   ///< ICP matches that hit the iteration limit (counted as failures)
+  double median_ms = 0.0;  ///< per match, the reference map's construction included
 };
-
-/// The points of a scan's returns (range < max_range) in its robot frame, in beam order.
-std::vector<Eigen::Vector2d> scan_returns(const RangeScan& scan);
 
 /// The relative pose b in a's frame: a^-1 * b.
 Pose2 relative_pose(const Pose2& a, const Pose2& b);
 
-/// Matches every pair with robust ICP (match_scans: the scan at t1 is the reference) and
-/// reports the errors. Throws gridloc::Error for no pairs or a pair index outside the log.
-RelationEvalReport evaluate_relations_icp(const CarmenLog& log,
-                                          const std::vector<RelationPair>& pairs,
-                                          const RelationEvalOptions& options = {});
+/// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
+/// `converged` is false when ICP hit its iteration limit.
+Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
+                 const RelationEvalOptions& options, bool* converged = nullptr);
+
+/// Matches every pair by options.matcher (the scan at t1 is the reference) and reports the
+/// errors. Throws gridloc::Error for no pairs or a pair index outside the log.
+RelationEvalReport evaluate_relations(const CarmenLog& log, const std::vector<RelationPair>& pairs,
+                                      const RelationEvalOptions& options = {});
 
 }  // namespace gridloc
