@@ -257,6 +257,24 @@ TEST_F(Cli, EvalJson) {
           {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
 }
 
+TEST_F(Cli, EvalComparesEstimatorsWithALaser) {
+  const CliRun r = run_cli(dir,
+                           "eval --trials 3 --maps room_l --laser --estimators "
+                           "correlation,icp,correlation+icp --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("sensor"), "laser");
+  const auto& configs = j.at("configurations");
+  ASSERT_EQ(configs.size(), 3u);
+  EXPECT_EQ(configs[0].at("estimator"), "correlation");
+  EXPECT_EQ(configs[1].at("estimator"), "icp");
+  EXPECT_EQ(configs[2].at("estimator"), "correlation+icp");
+  expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators icp --quiet"),
+                   "--laser");
+  expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators pf --quiet"),
+                   "correlation, icp or correlation+icp");
+}
+
 TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
   const std::string csv = (dir.path() / "trials.csv").string();
   const CliRun r = run_cli(

@@ -9,51 +9,30 @@
 #include <numbers>
 #include <vector>
 
+#include "gridloc/sensors/segment_world.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
 namespace {
 
-struct Wall {
-  Eigen::Vector2d a, b;
-};
-
 /// A 7 m x 4 m room with a box, a recess and a pillar: no symmetry to confuse a matcher.
-std::vector<Wall> room() {
+std::vector<WallSegment> room() {
   auto box = [](double x0, double y0, double x1, double y1) {
-    return std::vector<Wall>{
+    return std::vector<WallSegment>{
         {{x0, y0}, {x1, y0}}, {{x1, y0}, {x1, y1}}, {{x1, y1}, {x0, y1}}, {{x0, y1}, {x0, y0}}};
   };
-  std::vector<Wall> w = {{{0, 0}, {7, 0}},   {{7, 0}, {7, 4}},     {{7, 4}, {3, 4}},
-                         {{3, 4}, {3, 4.6}}, {{3, 4.6}, {2, 4.6}}, {{2, 4.6}, {2, 4}},
-                         {{2, 4}, {0, 4}},   {{0, 4}, {0, 0}}};
-  for (const Wall& b : box(4.5, 1.0, 5.3, 1.6)) w.push_back(b);
-  for (const Wall& b : box(1.0, 2.8, 1.3, 3.1)) w.push_back(b);
+  std::vector<WallSegment> w = {{{0, 0}, {7, 0}},   {{7, 0}, {7, 4}},     {{7, 4}, {3, 4}},
+                                {{3, 4}, {3, 4.6}}, {{3, 4.6}, {2, 4.6}}, {{2, 4.6}, {2, 4}},
+                                {{2, 4}, {0, 4}},   {{0, 4}, {0, 0}}};
+  for (const WallSegment& b : box(4.5, 1.0, 5.3, 1.6)) w.push_back(b);
+  for (const WallSegment& b : box(1.0, 2.8, 1.3, 3.1)) w.push_back(b);
   return w;
 }
 
 /// A 360-beam scan (1 degree) from `pose`, exact ranges to the nearest wall.
 RangeScan scan_at(const Pose2& pose) {
-  RangeScan s;
-  s.max_range = 20.0;
-  const Eigen::Vector2d o(pose.x, pose.y);
-  for (int k = 0; k < 360; ++k) {
-    const double a = -std::numbers::pi + k * std::numbers::pi / 180.0;
-    const Eigen::Vector2d d(std::cos(pose.theta + a), std::sin(pose.theta + a));
-    double best = s.max_range;
-    for (const Wall& w : room()) {
-      const Eigen::Vector2d e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d q = w.a - o;
-      const double t = (q.x() * e.y() - q.y() * e.x()) / den;
-      const double u = (q.x() * d.y() - q.y() * d.x()) / den;
-      if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
-    }
-    s.angles.push_back(a);
-    s.ranges.push_back(best);
-  }
-  return s;
+  return simulate_segment_scan(room(), pose, 360, -std::numbers::pi, std::numbers::pi / 180.0,
+                               20.0);
 }
 
 /// A log of scans at `poses` and the exact relations between consecutive ones.
@@ -104,6 +83,29 @@ TEST(RelationEval, IcpRecoversExactRelationsFromANoisyPrior) {
   EXPECT_EQ(r.failures, 0);
   EXPECT_LT(r.translation_error_m.mean, 1e-3);
   EXPECT_LT(r.rotation_error_deg.mean, 0.05);
+}
+
+TEST(RelationEval, CorrelationAndCorrelationIcpRecoverFarPriors) {
+  // Priors off by up to 0.6 m and 20 deg: the correlation search finds the motion on the
+  // lattice (5 cm, about 0.4 deg), ICP from there the exact one.
+  CarmenLog log;
+  std::vector<RelationPair> pairs;
+  synthetic({{2.0, 1.5, 0.1}, {2.3, 1.7, 0.25}, {2.6, 2.0, 0.2}, {2.5, 2.2, -0.1}}, log, pairs);
+  RelationEvalOptions o;
+  o.prior_noise_xy = 0.6;
+  o.prior_noise_theta = 0.35;
+  o.matcher = PairMatcher::Correlation;
+  const RelationEvalReport c = evaluate_relations(log, pairs, o);
+  EXPECT_EQ(c.failures, 0);
+  EXPECT_LT(c.translation_error_m.mean, 0.05);
+  EXPECT_LT(c.rotation_error_deg.mean, 1.0);
+  o.matcher = PairMatcher::CorrelationIcp;
+  const RelationEvalReport ci = evaluate_relations(log, pairs, o);
+  EXPECT_EQ(ci.failures, 0);
+  EXPECT_LT(ci.translation_error_m.mean, 1e-3);
+  EXPECT_LT(ci.rotation_error_deg.mean, 0.05);
+  EXPECT_EQ(parse_pair_matcher("correlation+icp"), PairMatcher::CorrelationIcp);
+  test::expect_error([] { parse_pair_matcher("ndt"); }, {"icp, correlation or correlation+icp"});
 }
 
 TEST(RelationEval, Errors) {

@@ -6,8 +6,10 @@
 #include <limits>
 #include <memory>
 
+#include "gridloc/engine/icp_estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/rng.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 
 namespace gridloc {
 namespace {
@@ -132,6 +134,43 @@ OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double ke
   return world;
 }
 
+std::string to_string(EstimatorKind kind) {
+  switch (kind) {
+    case EstimatorKind::Correlation:
+      return "correlation";
+    case EstimatorKind::Icp:
+      return "icp";
+    case EstimatorKind::CorrelationIcp:
+      return "correlation+icp";
+  }
+  return "?";
+}
+
+EstimatorKind parse_estimator_kind(const std::string& name) {
+  for (EstimatorKind k :
+       {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp}) {
+    if (to_string(k) == name) return k;
+  }
+  throw Error("the estimator must be correlation, icp or correlation+icp, not '" + name + "'");
+}
+
+namespace {
+
+/// An estimator shared with another owner (the correlation search of CorrelationIcp).
+class SharedEstimator final : public Estimator {
+ public:
+  explicit SharedEstimator(std::shared_ptr<const Estimator> e) : e_(std::move(e)) {}
+  Estimate estimate(const Observation& o, const SearchWindow& w) const override {
+    return e_->estimate(o, w);
+  }
+  std::string name() const override { return e_->name(); }
+
+ private:
+  std::shared_ptr<const Estimator> e_;
+};
+
+}  // namespace
+
 EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& ring,
                           const EvalOptions& options,
                           const std::function<void(int, int)>& progress) {
@@ -144,6 +183,17 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
                   std::to_string(options.echo_firings));
     }
   }
+  const LaserProtocol& laser = options.laser;
+  if (laser.enabled && options.echo_filter) {
+    throw Error("evaluation: the echo filter is for sonar readings, not the laser protocol");
+  }
+  for (const auto& c : options.configurations) {
+    if (c.estimator != EstimatorKind::Correlation && !laser.enabled) {
+      throw Error("evaluation: the " + to_string(c.estimator) +
+                  " estimator needs laser scans (the laser protocol, gridloc eval --laser): "
+                  "ICP finds no tangents in a sonar ring's echoes");
+    }
+  }
   const std::size_t nc = options.configurations.size();
   std::vector<std::vector<double>> pos_err(nc), head_err(nc), ms(nc);
   std::vector<int> successes(nc, 0);
@@ -152,12 +202,28 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
   EvalReport report;
 
   for (std::size_t m = 0; m < maps.size(); ++m) {
-    std::vector<std::unique_ptr<CorrelationEstimator>> estimators;
+    std::vector<std::unique_ptr<Estimator>> estimators;
+    std::shared_ptr<const IcpEstimator> icp;  // one per map, shared by the ICP configurations
     for (const auto& config : options.configurations) {
       CorrelationOptions o = options.search;
       o.local = config.local;
       o.global = config.global;
-      estimators.push_back(std::make_unique<CorrelationEstimator>(maps[m].map, ring, o));
+      o.reach_m = laser.enabled ? laser.max_range : 0.0;
+      if (config.estimator != EstimatorKind::Correlation && !icp) {
+        icp = std::make_shared<const IcpEstimator>(maps[m].map);
+      }
+      if (config.estimator == EstimatorKind::Icp) {
+        estimators.push_back(std::make_unique<IcpEstimator>(*icp));
+        continue;
+      }
+      auto correlation = laser.enabled
+                             ? std::make_shared<CorrelationEstimator>(maps[m].map, o)
+                             : std::make_shared<CorrelationEstimator>(maps[m].map, ring, o);
+      if (config.estimator == EstimatorKind::CorrelationIcp) {
+        estimators.push_back(std::make_unique<CorrelationIcpEstimator>(correlation, icp));
+      } else {
+        estimators.push_back(std::make_unique<SharedEstimator>(correlation));
+      }
     }
     for (int t = 0; t < options.trials; ++t) {
       Rng rng(mix(mix(options.seed, m), static_cast<std::uint64_t>(t)));
@@ -179,7 +245,13 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
         changed = add_furniture(maps[m].map, truth, footprint_radius + 0.3, rng);
         world = &changed;
       }
-      Observation obs{simulate_sonar(*world, ring, truth, noise)};
+      Observation obs;
+      if (laser.enabled) {
+        obs.scan =
+            simulate_scan(*world, truth, laser.beams, laser.max_range, laser.sigma_m, noise.seed);
+      } else {
+        obs.ranges = simulate_sonar(*world, ring, truth, noise);
+      }
       int rejected_sonars = 0;
       if (options.echo_filter) {
         // Consecutive firings from the same pose: the first is the unfiltered protocol's

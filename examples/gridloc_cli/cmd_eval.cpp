@@ -1,4 +1,5 @@
-// gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}.
+// gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}, or over the
+// estimators (--estimators), with the sonar ring or a simulated laser (--laser).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -26,6 +27,8 @@ struct EvalArgs {
   bool noisy = false;
   bool echo_filter = false;
   std::string trials_out;
+  std::string estimators;  ///< empty: the correlation over the four model configurations
+  LaserProtocol laser;
 };
 
 /// A number, or null when it is NaN (an AUROC without failures).
@@ -39,7 +42,7 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
   if (!out) throw Error("--trials-out: cannot write " + path);
   out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
          "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
-         "std_theta,on_window_edge,agreement,rejected_sonars\n";
+         "std_theta,on_window_edge,agreement,rejected_sonars,estimator\n";
   for (const TrialRecord& r : report.records) {
     const EvalConfiguration& c = o.configurations[r.configuration];
     const Estimate& e = r.estimate;
@@ -48,7 +51,8 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
         << ',' << r.heading_error_deg << ',' << e.score << ',' << e.normalized_score << ','
         << e.second_score << ',' << e.confidence << ',' << std::sqrt(e.covariance(0, 0)) << ','
         << std::sqrt(e.covariance(1, 1)) << ',' << std::sqrt(e.covariance(2, 2)) << ','
-        << e.on_window_edge << ',' << e.agreement << ',' << r.rejected_sonars << '\n';
+        << e.on_window_edge << ',' << e.agreement << ',' << r.rejected_sonars << ','
+        << to_string(c.estimator) << '\n';
   }
   if (!out) throw Error("--trials-out: writing " + path + " failed");
 }
@@ -74,6 +78,16 @@ void run(const EvalArgs& a) {
     throw Error("--noise must be realistic or none, not '" + a.noise + "'");
   }
   o.noisy.enabled = a.noisy;
+  o.laser = a.laser;
+  if (!a.estimators.empty()) {
+    // One configuration per estimator, the correlation with seed 001's best models.
+    o.configurations.clear();
+    for (const auto& name : split(a.estimators)) {
+      o.configurations.push_back(
+          {LocalModel::Oriented, GlobalModel::Thinned, parse_estimator_kind(name)});
+    }
+    if (o.configurations.empty()) throw Error("--estimators names no estimator");
+  }
   if (a.echo_filter) o.echo_filter = EchoFilterOptions{};
   std::vector<EvalMap> maps;
   for (const auto& path : split(a.maps)) {
@@ -90,8 +104,8 @@ void run(const EvalArgs& a) {
 
   const EvalReport report = run_evaluation(maps, ring, o, [&](int done, int total) {
     if (a.quiet) return;
-    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, 4 configurations)", done,
-                 total, maps.size(), a.trials);
+    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, %zu configurations)", done,
+                 total, maps.size(), a.trials, o.configurations.size());
     if (done == total) std::fprintf(stderr, "\n");
   });
 
@@ -106,7 +120,8 @@ void run(const EvalArgs& a) {
     nlohmann::json configs = nlohmann::json::array();
     for (const auto& c : report.configurations) {
       configs.push_back(
-          {{"local", to_string(c.configuration.local)},
+          {{"estimator", to_string(c.configuration.estimator)},
+           {"local", to_string(c.configuration.local)},
            {"global", to_string(c.configuration.global)},
            {"success_rate", c.success_rate},
            {"successes", c.successes},
@@ -124,6 +139,7 @@ void run(const EvalArgs& a) {
                                 {"strategy", a.search.strategy},
                                 {"noise", a.noisy ? "noisy" : a.noise},
                                 {"noisy", a.noisy},
+                                {"sensor", a.laser.enabled ? "laser" : "sonar"},
                                 {"echo_filter", a.echo_filter},
                                 {"echo_filter_rejected_per_trial", rejected_per_trial},
                                 {"arc_rule", a.search.arc_rule},
@@ -144,8 +160,12 @@ void run(const EvalArgs& a) {
       a.noisy ? " (noisy: harsh noise, wrong priors, furniture)" : "", report.trials, maps.size(),
       static_cast<unsigned long long>(a.seed), a.search.strategy.c_str(),
       a.noisy ? "harsh" : a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth, filter);
-  std::printf("%-9s %-8s %9s %14s %16s %10s %7s %9s\n", "local", "global", "success",
-              "mean pos err", "mean head err", "median", "AUROC", "flagged");
+  if (a.laser.enabled) {
+    std::printf("laser: %d beams, %.1f m max range, %.3f m noise\n", a.laser.beams,
+                a.laser.max_range, a.laser.sigma_m);
+  }
+  std::printf("%-15s %-9s %-8s %9s %14s %16s %10s %7s %9s\n", "estimator", "local", "global",
+              "success", "mean pos err", "mean head err", "median", "AUROC", "flagged");
   auto percent_or_dash = [](double v, double scale) {
     char buf[32];
     if (std::isnan(v)) return std::string("-");
@@ -153,10 +173,13 @@ void run(const EvalArgs& a) {
     return std::string(buf) + (scale > 1.0 ? "%" : "");
   };
   for (const auto& c : report.configurations) {
-    std::printf("%-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s\n",
-                to_string(c.configuration.local).c_str(), to_string(c.configuration.global).c_str(),
-                100.0 * c.success_rate, c.mean_position_error_m, c.mean_heading_error_deg,
-                c.median_ms, percent_or_dash(c.auroc, 1.0).c_str(),
+    const bool models = c.configuration.estimator != EstimatorKind::Icp;
+    std::printf("%-15s %-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s\n",
+                to_string(c.configuration.estimator).c_str(),
+                models ? to_string(c.configuration.local).c_str() : "-",
+                models ? to_string(c.configuration.global).c_str() : "-", 100.0 * c.success_rate,
+                c.mean_position_error_m, c.mean_heading_error_deg, c.median_ms,
+                percent_or_dash(c.auroc, 1.0).c_str(),
                 percent_or_dash(c.failures_flagged_at_95_recall, 100.0).c_str());
   }
   std::printf(
@@ -188,6 +211,17 @@ void add_eval(CLI::App& app) {
   cmd->add_flag("--echo-filter", a->echo_filter,
                 "fire the ring 3 times per trial and reject sonars whose echoes disagree "
                 "(EERUF-like; a rejected sonar adds nothing to the local grid)");
+  cmd->add_option("--estimators", a->estimators,
+                  "compare these estimators on the same trials: comma-separated correlation, "
+                  "icp, correlation+icp (icp needs --laser); default: the correlation over "
+                  "{turned, oriented} x {raw, thinned}");
+  cmd->add_flag("--laser", a->laser.enabled,
+                "observe with a simulated 360 degree laser instead of the sonar ring");
+  cmd->add_option("--laser-beams", a->laser.beams, "laser beams per scan")->capture_default_str();
+  cmd->add_option("--laser-max-range", a->laser.max_range, "laser max range (m)")
+      ->capture_default_str();
+  cmd->add_option("--laser-noise", a->laser.sigma_m, "laser range noise sigma (m)")
+      ->capture_default_str();
   cmd->add_option("--trials-out", a->trials_out,
                   "write every trial (errors, scores, confidence, std) to this CSV");
   cmd->callback([a] { run(*a); });

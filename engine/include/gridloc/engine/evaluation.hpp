@@ -16,9 +16,31 @@
 
 namespace gridloc {
 
+/// The estimator a configuration runs (issue 5: the estimators compared on the same trials).
+enum class EstimatorKind {
+  Correlation,     ///< CorrelationEstimator with the configuration's local and global models
+  Icp,             ///< IcpEstimator from the prior (laser protocol only)
+  CorrelationIcp,  ///< CorrelationIcpEstimator (laser protocol only)
+};
+
+/// "correlation", "icp" or "correlation+icp".
+std::string to_string(EstimatorKind kind);
+/// The kind to_string() names; gridloc::Error listing the choices otherwise.
+EstimatorKind parse_estimator_kind(const std::string& name);
+
 struct EvalConfiguration {
   LocalModel local = LocalModel::Oriented;
   GlobalModel global = GlobalModel::Thinned;
+  EstimatorKind estimator = EstimatorKind::Correlation;
+};
+
+/// The laser protocol (`gridloc eval --laser`): each trial simulates a 360 degree laser scan
+/// (simulate_scan) from the true pose instead of the sonar ring, so ICP can run.
+struct LaserProtocol {
+  bool enabled = false;
+  int beams = 360;
+  double max_range = 8.0;  ///< m; also the correlation estimator's reach
+  double sigma_m = 0.01;   ///< Gaussian range noise
 };
 
 /// The failure-provoking protocol of `gridloc eval --noisy`: each trial draws what can go
@@ -42,6 +64,9 @@ struct EvalOptions {
   SonarSimOptions noise = SonarSimOptions::realistic(1);  ///< its seed is replaced per trial
   CorrelationOptions search;  ///< its local/global fields are replaced per configuration
   NoisyProtocol noisy;        ///< when enabled, replaces `noise` and adds failures
+  /// When enabled, trials observe with a laser (noisy still adds wrong priors and furniture;
+  /// the sonar noise and the echo filter do not apply).
+  LaserProtocol laser;
   /// When set (`gridloc eval --echo-filter`), each trial fires the ring `echo_firings` times
   /// from the same pose (the first firing is the reading of the unfiltered protocol, the others
   /// draw their noise, dropouts and crosstalk from seeds of their own), filters the firings
