@@ -24,9 +24,20 @@
 ///   The slowest of them, the global samples rows that search the second peak (1-2.5 s per call),
 ///   are registered only with GRIDLOC_BENCH_FULL=1, so that bench_smoke stays short; the default
 ///   set keeps every global hits row and the samples rows with no_second_peak.
-/// Counters: pos_err_mm and heading_err_deg of the refined pose against truth.txt,
-/// poses_per_loc (poses scored), cells_per_s, headings, step_theta_mrad, median_ms (estimator's
-/// own elapsed_ms), proven (stats.proven_optimal, 1 or 0).
+///   Counters: pos_err_mm and heading_err_deg of the refined pose against truth.txt,
+///   poses_per_loc (poses scored), cells_per_s, headings, step_theta_mrad, median_ms (estimator's
+///   own elapsed_ms), proven (stats.proven_optimal, 1 or 0).
+/// - BM_ApartmentIcpPrecompute: IcpEstimator construction from the map (its contour model:
+///   contour cells with normals and their bucket index). Counter contour_points.
+/// - BM_ApartmentIcp/<case>/<estimator>: one estimate() per iteration for case1 and case2, with
+///   the windowed rows' window (start pose, +-0.5 m, +-0.3 rad, step_xy 0.05, 0.005 rad).
+///   icp: IcpEstimator (default options), scan-to-map ICP from the window's centre, the start
+///   pose. correlation+icp: CorrelationIcpEstimator (default options) around the estimator of
+///   bnb/hits/no_second_peak (the same object as that BM_ApartmentScan row's), its winner refined
+///   by ICP. Both estimators are built once, outside the timing. Counters: pos_err_mm,
+///   heading_err_deg, median_ms as above; icp adds iterations (ICP iterations) and converged
+///   (1 or 0); correlation+icp adds icp_shift_mm (how far ICP moved the search's pose: 0 when
+///   it was rejected) and poses_per_loc (poses the search scored).
 /// Without ../shared every one of them is skipped with an error saying so.
 #include <algorithm>
 #include <cmath>
@@ -42,6 +53,7 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
+#include "gridloc/engine/icp_estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/range_scan.hpp"
@@ -159,12 +171,24 @@ CorrelationOptions scan_options(const Config& c) {
   return o;
 }
 
-/// One estimator per configuration, built outside any timing loop and kept.
-const CorrelationEstimator& scan_estimator(const Config& c) {
-  static std::map<decltype(c.key()), std::unique_ptr<CorrelationEstimator>> cache;
+/// One estimator per configuration, built outside any timing loop and kept (shared, so that
+/// CorrelationIcpEstimator can hold the same one).
+std::shared_ptr<const CorrelationEstimator> shared_scan_estimator(const Config& c) {
+  static std::map<decltype(c.key()), std::shared_ptr<const CorrelationEstimator>> cache;
   auto& slot = cache[c.key()];
-  if (!slot) slot = std::make_unique<CorrelationEstimator>(inputs().map, scan_options(c));
-  return *slot;
+  if (!slot) slot = std::make_shared<const CorrelationEstimator>(inputs().map, scan_options(c));
+  return slot;
+}
+
+const CorrelationEstimator& scan_estimator(const Config& c) {
+  return *shared_scan_estimator(c);
+}
+
+/// The ICP estimator of the map (default options), built once outside any timing loop.
+std::shared_ptr<const IcpEstimator> shared_icp_estimator() {
+  static const std::shared_ptr<const IcpEstimator> icp =
+      std::make_shared<const IcpEstimator>(inputs().map);
+  return icp;
 }
 
 /// Wide-window heading step: the angle that moves the farthest return by one cell,
@@ -273,6 +297,70 @@ void BM_ApartmentScan(benchmark::State& state, const Case& c, Config config) {
   state.counters["proven"] = last->stats.proven_optimal ? 1.0 : 0.0;
 }
 
+void BM_ApartmentIcpPrecompute(benchmark::State& state) {
+  const Inputs& in = inputs();
+  if (!in.error.empty()) {
+    state.SkipWithError(in.error.c_str());
+    return;
+  }
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const IcpEstimator est(in.map);
+    benchmark::DoNotOptimize(est.contour().points().data());
+    points = est.contour().size();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["contour_points"] = static_cast<double>(points);
+}
+
+/// The correlation configuration CorrelationIcpEstimator wraps: bnb/hits/no_second_peak.
+const Config kIcpCorrelation{SearchStrategy::BranchAndBound, ScanModel::Hits, 1, false, false};
+
+void BM_ApartmentIcp(benchmark::State& state, const Case& c, bool with_correlation) {
+  const Inputs& in = inputs();
+  if (!in.error.empty()) {
+    state.SkipWithError(in.error.c_str());
+    return;
+  }
+  Observation obs;
+  obs.scan = in.scans.at(c.dir);
+  const Pose2& truth = in.truths.at(c.dir);
+  const std::shared_ptr<const IcpEstimator> icp = shared_icp_estimator();
+  std::unique_ptr<const Estimator> est;
+  if (with_correlation) {
+    est = std::make_unique<const CorrelationIcpEstimator>(shared_scan_estimator(kIcpCorrelation),
+                                                          icp);
+  }
+  const SearchWindow window{c.start, c.half_xy, c.half_theta, kResolution, kStepTheta};
+
+  std::vector<double> elapsed_ms;
+  std::optional<Estimate> last;
+  for (auto _ : state) {
+    last = est ? est->estimate(obs, window) : icp->estimate(obs, window);
+    benchmark::DoNotOptimize(last->pose);
+    elapsed_ms.push_back(last->stats.elapsed_ms);
+  }
+  if (!last) return;
+  // Deterministic: every iteration gives this same estimate.
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pos_err_mm"] =
+      1000.0 * std::hypot(last->pose.x - truth.x, last->pose.y - truth.y);
+  state.counters["heading_err_deg"] =
+      std::abs(normalize_angle(last->pose.theta - truth.theta)) * 180.0 / std::numbers::pi;
+  state.counters["median_ms"] = median(std::move(elapsed_ms));
+  if (with_correlation) {
+    // The search alone, once, outside the timing: how far ICP moved its pose.
+    const Estimate coarse = scan_estimator(kIcpCorrelation).estimate(obs, window);
+    state.counters["icp_shift_mm"] =
+        1000.0 * std::hypot(last->pose.x - coarse.pose.x, last->pose.y - coarse.pose.y);
+    state.counters["poses_per_loc"] = static_cast<double>(last->stats.poses_scored);
+  } else {
+    const IcpResult r = icp->match(obs, window.center);  // once, for converged
+    state.counters["iterations"] = static_cast<double>(last->stats.poses_scored);
+    state.counters["converged"] = r.converged ? 1.0 : 0.0;
+  }
+}
+
 /// The BM_ApartmentScan rows of case `c`.
 std::vector<Config> configs(const Case& c) {
   const std::string name = c.name;
@@ -329,6 +417,18 @@ const bool registered = [] {
       } else if (c.kind == Kind::Global) {
         b->Iterations(full_mode() ? kGlobalIterationsFull : 1);
       }
+    }
+  }
+  benchmark::RegisterBenchmark("BM_ApartmentIcpPrecompute", BM_ApartmentIcpPrecompute)
+      ->Unit(benchmark::kMillisecond);
+  for (const Case& c : kCases) {
+    if (c.kind != Kind::Windowed) continue;
+    for (const bool with_correlation : {false, true}) {
+      const std::string name = "BM_ApartmentIcp/" + std::string(c.name) +
+                               (with_correlation ? "/correlation+icp" : "/icp");
+      benchmark::RegisterBenchmark(name.c_str(), BM_ApartmentIcp, c, with_correlation)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
     }
   }
   return true;

@@ -1,10 +1,18 @@
 /// Robust scan-to-scan ICP (gridloc::match_scans, seed 004), timed per scan pair:
-/// - BM_IcpHallway/outliers_pct:<p>: seed 004 §4's simulation, a 720-beam (0.5 deg, 8 m)
-///   noise-free scan of seed004_hallway() at (0, 0, 0) as reference and one at
-///   (0.5 m, -0.2 m, 20 deg) as current, with p % of the current points replaced by seeded
-///   random points within 3 m (as tests/test_robust_icp.cpp's with_outliers), matched from a
-///   zero prior with default options. One iteration is one match. Counters: error_mm
-///   (position error), error_deg, iterations (ICP iterations of the match).
+/// - BM_IcpHallway/outliers_pct:<p>/noise_mm:<n>[/<kind>]: seed 004 §4's simulation, a
+///   720-beam (0.5 deg, 8 m) scan of seed004_hallway() at (0, 0, 0) as reference and one at
+///   (0.5 m, -0.2 m, 20 deg) as current, matched from a zero prior with default options. One
+///   iteration is one match.
+///   noise_mm: Gaussian range noise of that standard deviation (seeded) added along each beam
+///   to the returns of both scans (0 or 20 mm: seed 004's sensor resolves 40.1 mm per pixel).
+///   outliers_pct: p % of the current scan's points are outliers, after the noise, of one kind
+///   (only with p > 0): scattered, replaced by seeded random points within 3 m
+///   (scatter_outliers), or appearing, four contiguous runs pulled 20-60 % closer to the robot
+///   like obstacles that appeared (appear_obstacles; sensors/scan_disturbances.hpp).
+///   Rows: outliers 0 and 30 x noise 0 and 20, the 30 % rows in both kinds (6 rows).
+///   Counters: error_mm (position error), error_x_mm and error_y_mm (absolute error per axis,
+///   as seed 004 reports: 11.66 mm, 5.06 mm, 0.06 deg within 10 iterations), error_deg,
+///   iterations (ICP iterations of the match), converged (1 or 0).
 /// - BM_IcpIntelPairs: every Intel lab relation that falls on two scans of the corrected Intel
 ///   log (../shared/datasets/xiaofeng419_SLAM-2D-LIDAR-SCAN, or $GRIDLOC_SHARED_DIR/datasets/...),
 ///   matched from the logged relative motion as prior (no noise). One iteration matches all
@@ -15,15 +23,15 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <numeric>
-#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_scenarios.hpp"
 #include "gridloc/engine/relation_eval.hpp"
 #include "gridloc/engine/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
+#include "gridloc/sensors/scan_disturbances.hpp"
 #include "gridloc/sensors/segment_world.hpp"
 #include "gridloc/sensors/slam_relations.hpp"
 
@@ -34,39 +42,58 @@ using Points = std::vector<Eigen::Vector2d>;
 
 const Pose2 kMotion{0.5, -0.2, deg2rad(20.0)};  // seed 004 §4
 
-/// The hallway's returns at `pose` in the robot frame, in beam order: 720 beams 0.5 deg apart
-/// from -180 deg, 8 m max range (as tests/test_robust_icp.cpp's scan_at).
-Points hallway_scan(const Pose2& pose) {
+/// The hallway's scan at `pose`: 720 beams 0.5 deg apart from -180 deg, 8 m max range (as
+/// tests/test_robust_icp.cpp's scan_at), with Gaussian noise of `noise_m` (seeded) added to
+/// every return's range, along its beam.
+RangeScan hallway_scan(const Pose2& pose, double noise_m, unsigned seed) {
   static const std::vector<WallSegment> walls = seed004_hallway();
-  return scan_returns(simulate_segment_scan(walls, pose, 720, deg2rad(-180.0), deg2rad(0.5), 8.0));
+  RangeScan scan = simulate_segment_scan(walls, pose, 720, deg2rad(-180.0), deg2rad(0.5), 8.0);
+  add_range_noise(scan, noise_m, seed);
+  return scan;
 }
 
-/// Replaces `share` of the points by random points within 3 m of the robot (seeded).
-Points with_outliers(Points pts, double share, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::vector<std::size_t> idx(pts.size());
-  std::iota(idx.begin(), idx.end(), 0);
-  std::shuffle(idx.begin(), idx.end(), rng);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
-  const auto n = static_cast<std::size_t>(share * static_cast<double>(pts.size()));
-  for (std::size_t k = 0; k < n; ++k) pts[idx[k]] = {u(rng), u(rng)};
-  return pts;
-}
+enum class OutlierKind { Scattered, Appearing };
 
-void BM_IcpHallway(benchmark::State& state) {
-  const double share = static_cast<double>(state.range(0)) / 100.0;
-  const Points ref = hallway_scan({0, 0, 0});
-  const Points cur = with_outliers(hallway_scan(kMotion), share, 4);
+void BM_IcpHallway(benchmark::State& state, int outliers_pct, int noise_mm, OutlierKind kind) {
+  const double share = static_cast<double>(outliers_pct) / 100.0;
+  const double noise_m = static_cast<double>(noise_mm) / 1000.0;
+  // Distinct noise seeds for the two scans; the outliers keep the seed 4 of the earlier rows.
+  const Points ref = scan_returns(hallway_scan({0, 0, 0}, noise_m, 1));
+  Points cur = scan_returns(hallway_scan(kMotion, noise_m, 2));
+  if (share > 0.0) {
+    cur = kind == OutlierKind::Scattered ? scatter_outliers(std::move(cur), share, 3.0, 4)
+                                         : appear_obstacles(std::move(cur), share, 4);
+  }
   IcpResult r;
   for (auto _ : state) {
     r = match_scans(ref, cur, Pose2{}, IcpOptions{});
     benchmark::DoNotOptimize(r);
   }
-  state.counters["error_mm"] = 1000.0 * std::hypot(r.pose.x - kMotion.x, r.pose.y - kMotion.y);
+  const double ex = r.pose.x - kMotion.x, ey = r.pose.y - kMotion.y;
+  state.counters["error_mm"] = 1000.0 * std::hypot(ex, ey);
+  state.counters["error_x_mm"] = 1000.0 * std::abs(ex);
+  state.counters["error_y_mm"] = 1000.0 * std::abs(ey);
   state.counters["error_deg"] = rad2deg(std::abs(normalize_angle(r.pose.theta - kMotion.theta)));
   state.counters["iterations"] = r.iterations;
+  state.counters["converged"] = r.converged ? 1.0 : 0.0;
 }
-BENCHMARK(BM_IcpHallway)->ArgName("outliers_pct")->Arg(0)->Arg(30)->Unit(benchmark::kMicrosecond);
+
+/// outliers 0 and 30 % x noise 0 and 20 mm; the outlier kind only with outliers.
+const bool hallway_registered = [] {
+  for (int outliers : {0, 30}) {
+    for (int noise : {0, 20}) {
+      for (OutlierKind kind : {OutlierKind::Scattered, OutlierKind::Appearing}) {
+        if (outliers == 0 && kind != OutlierKind::Scattered) continue;
+        std::string name = "BM_IcpHallway/outliers_pct:" + std::to_string(outliers) +
+                           "/noise_mm:" + std::to_string(noise);
+        if (outliers > 0) name += kind == OutlierKind::Scattered ? "/scattered" : "/appearing";
+        benchmark::RegisterBenchmark(name.c_str(), BM_IcpHallway, outliers, noise, kind)
+            ->Unit(benchmark::kMicrosecond);
+      }
+    }
+  }
+  return true;
+}();
 
 /// The shared folder: $GRIDLOC_SHARED_DIR when set, else ../shared next to the source tree.
 std::filesystem::path shared_dir() {

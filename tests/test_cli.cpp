@@ -335,7 +335,7 @@ TEST_F(Cli, RelationsOnTheIntelLog) {
       "not found");
   expect_cli_error(run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
                                     " --estimator particles"),
-                   "icp, correlation or correlation+icp");
+                   "correlation, icp or correlation+icp");
   if (!std::filesystem::exists(log)) GTEST_SKIP() << "../shared is absent: " << log;
   const CliRun r = run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
                                     " --time-offset 976052857.337311 --json");

@@ -131,6 +131,21 @@ TEST(Evaluation, LaserProtocolComparesTheEstimatorsOnTheSameTrials) {
   EXPECT_GT(icp.auroc, 0.9);
 }
 
+TEST(Evaluation, ASparseLaserFailsIcpWithoutEndingTheRun) {
+  // 36 beams, 10 deg apart: ICP finds no segments; its trials fail (confidence 0) and the
+  // correlation, alone or refined, carries on.
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  EvalOptions o;
+  o.trials = 3;
+  o.laser.enabled = true;
+  o.laser.beams = 36;
+  o.configurations = {{LocalModel::Oriented, GlobalModel::Thinned, EstimatorKind::Icp},
+                      {LocalModel::Oriented, GlobalModel::Thinned, EstimatorKind::CorrelationIcp}};
+  const EvalReport r = run_evaluation(bundled_rooms(), ring, o);
+  EXPECT_EQ(r.configurations[0].successes, 0);
+  EXPECT_GE(r.configurations[1].success_rate, 0.75);
+}
+
 TEST(Evaluation, IcpNeedsTheLaserProtocol) {
   const SonarRing ring = load_sonar_ring(test::ring_path());
   EvalOptions o;

@@ -72,6 +72,37 @@ TEST(IcpEstimator, RecoversThePoseFromAPriorOffBy20CmAnd6Deg) {
   }
 }
 
+TEST(IcpEstimator, AMapFarFromItsOriginWorksAsWell) {
+  // The same map 1 km from its frame's origin (UTM-like coordinates): the increment turns
+  // about the robot, not the origin, so ICP converges the same way.
+  OccupancyMap map = load_ros_map(test::map_path("apartment_small"));
+  const Pose2 near_truth{6.5, 4.5, -2.0};
+  const Eigen::Vector2d shift(1000.0, 1000.0);
+  map.geometry.origin += shift;
+  const IcpEstimator icp(map);
+  const Pose2 truth{near_truth.x + shift.x(), near_truth.y + shift.y(), near_truth.theta};
+  SearchWindow w;
+  w.center = {truth.x + 0.15, truth.y - 0.12, truth.theta + 0.1};
+  const Estimate e = icp.estimate(laser_at(map, truth, 0.01, 7), w);
+  EXPECT_LT(pos_err(e.pose, truth), 0.02);
+  EXPECT_LT(ang_err(e.pose, truth), 0.01);
+  EXPECT_EQ(e.verdict, Verdict::Localized);
+}
+
+TEST(IcpEstimator, AScanTooSparseForIcpIsNotLocalizedNotAnError) {
+  const OccupancyMap map = load_ros_map(test::map_path("apartment_small"));
+  const IcpEstimator icp(map);
+  SearchWindow w;
+  w.center = {2.0, 2.0, 0.3};
+  Observation sparse;
+  sparse.scan = simulate_scan(map, w.center, 12, 8.0, 0.0, 1);  // 30 deg apart: no segments
+  const Estimate e = icp.estimate(sparse, w);
+  EXPECT_EQ(e.verdict, Verdict::NotLocalized);
+  EXPECT_EQ(e.confidence, 0.0);
+  EXPECT_TRUE(std::isinf(e.covariance(0, 0)));
+  EXPECT_EQ(e.covariance(0, 1), 0.0);  // no NaN from inf * 0
+}
+
 TEST(IcpEstimator, APoseLeavingTheWindowIsNotLocalized) {
   const OccupancyMap map = load_ros_map(test::map_path("apartment_small"));
   const IcpEstimator icp(map);

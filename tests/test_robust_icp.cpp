@@ -10,10 +10,9 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <numeric>
-#include <random>
 #include <vector>
 
+#include "gridloc/sensors/scan_disturbances.hpp"
 #include "gridloc/sensors/segment_world.hpp"
 #include "test_support.hpp"
 
@@ -37,31 +36,8 @@ Points scan_at(const Pose2& pose) {
   return out;
 }
 
-/// Replaces `share` of the points by random points within 3 m of the robot (seeded).
-Points with_outliers(Points pts, double share, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::vector<std::size_t> idx(pts.size());
-  std::iota(idx.begin(), idx.end(), 0);
-  std::shuffle(idx.begin(), idx.end(), rng);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
-  const auto n = static_cast<std::size_t>(share * static_cast<double>(pts.size()));
-  for (std::size_t k = 0; k < n; ++k) pts[idx[k]] = {u(rng), u(rng)};
-  return pts;
-}
-
-/// Replaces `share` of the points, in four contiguous runs, by phantom obstacles pulled 20-60 %
-/// closer to the robot (seeded).
-Points with_appearances(Points pts, double share, unsigned seed) {
-  std::mt19937 rng(seed);
-  const std::size_t n = pts.size();
-  const auto run = static_cast<std::size_t>(share * static_cast<double>(n) / 4.0);
-  std::uniform_real_distribution<double> f(0.4, 0.8);
-  for (std::size_t b = 0; b < 4; ++b) {
-    const std::size_t start = b * n / 4 + rng() % (n / 4 - run);
-    const double scale = f(rng);
-    for (std::size_t k = start; k < start + run; ++k) pts[k] *= scale;
-  }
-  return pts;
+Points with_outliers(const Points& pts, double share, unsigned seed) {
+  return scatter_outliers(pts, share, 3.0, seed);
 }
 
 const Pose2 kMotion{0.5, -0.2, deg2rad(20.0)};  // seed 004 §4
@@ -205,27 +181,112 @@ TEST(RobustIcp, HuberRejectsScatteredOutliersThatLeastSquaresFollows) {
     EXPECT_LT(pos_err(r.pose, kMotion), kRobustXy) << "seed " << seed;
     EXPECT_LT(rad2deg(ang_err(r.pose, kMotion)), kRobustThetaDeg) << "seed " << seed;
     const IcpResult p = timed_match(ref, cur, plain, "30% scattered outliers, least squares");
-    EXPECT_GT(pos_err(p.pose, kMotion), 0.01) << "seed " << seed;
+    // Least squares follows the outliers: millimetres to centimetres off, 1000x Huber's error.
+    EXPECT_GT(pos_err(p.pose, kMotion), 1000.0 * pos_err(r.pose, kMotion)) << "seed " << seed;
   }
+}
+
+/// Share of seeds 1..n whose match of the hallway pair, the current scan disturbed by
+/// `disturb(points, seed)`, lands within `xy` m and `theta_deg` of the motion.
+template <typename Disturb>
+int successes(int n, const IcpOptions& o, double noise_m, double xy, double theta_deg,
+              Disturb disturb) {
+  int ok = 0;
+  for (int seed = 1; seed <= n; ++seed) {
+    RangeScan a = simulate_segment_scan(seed004_hallway(), {0, 0, 0}, 720, deg2rad(-180.0),
+                                        deg2rad(0.5), 8.0);
+    RangeScan b =
+        simulate_segment_scan(seed004_hallway(), kMotion, 720, deg2rad(-180.0), deg2rad(0.5), 8.0);
+    add_range_noise(a, noise_m, 1000 + 2 * seed);
+    add_range_noise(b, noise_m, 1001 + 2 * seed);
+    const IcpResult r = match_scans(scan_returns(a), disturb(scan_returns(b), seed), Pose2{}, o);
+    ok += pos_err(r.pose, kMotion) < xy && rad2deg(ang_err(r.pose, kMotion)) < theta_deg ? 1 : 0;
+  }
+  return ok;
 }
 
 TEST(RobustIcp, HuberRejectsAppearingObstacles) {
   // Seed 004 §4: "most of the outliers are occlusion or appearance of obstacles". 30 % of the
   // current scan, in four runs, is pulled 20-60 % closer, as if obstacles had appeared; these
-  // runs form long segments that segmentation keeps, so only Huber can reject them.
-  const Points ref = scan_at({0, 0, 0});
-  // A 2 m reach: the default 0.5 m already keeps most phantoms out, for both estimators.
-  IcpOptions wide;
-  wide.max_correspondence_m = 2.0;
-  IcpOptions plain = wide;
+  // runs form long segments that segmentation keeps, so only Huber can reject them. Measured
+  // over seeds 1-100 (README): Huber 87 within 1 mm (the others stop in another basin: the
+  // phantoms hide what pins the 20 deg turn), least squares none.
+  const auto appear = [](const Points& p, int seed) {
+    return appear_obstacles(p, 0.3, static_cast<std::uint64_t>(seed));
+  };
+  IcpOptions plain;
   plain.robust = false;
-  for (unsigned seed : {4u, 5u, 6u, 7u}) {
-    const Points cur = with_appearances(scan_at(kMotion), 0.30, seed);
-    const IcpResult r = timed_match(ref, cur, wide, "30% appearing obstacles, Huber");
-    EXPECT_LT(pos_err(r.pose, kMotion), kRobustXy) << "seed " << seed;
-    EXPECT_LT(rad2deg(ang_err(r.pose, kMotion)), kRobustThetaDeg) << "seed " << seed;
-    const IcpResult p = timed_match(ref, cur, plain, "30% appearing obstacles, least squares");
-    EXPECT_GT(pos_err(p.pose, kMotion), 0.01) << "seed " << seed;
+  const int huber = successes(20, IcpOptions{}, 0.0, 1e-3, 0.01, appear);
+  const int least_squares = successes(20, plain, 0.0, 1e-3, 0.01, appear);
+  std::cout << "[appearing obstacles] within 1 mm: Huber " << huber << "/20, least squares "
+            << least_squares << "/20\n";
+  EXPECT_GE(huber, 15);
+  EXPECT_EQ(least_squares, 0);
+}
+
+TEST(RobustIcp, NoisyHallwayStaysWithinTheSeedsFigures) {
+  // Seed 004 §4 with sensor noise: 2 cm Gaussian range noise on both scans (half of its
+  // sensor's 40.1 mm pixel), with and without 30 % scattered outliers. Seed 004 reports
+  // 11.66 mm, 5.06 mm and 0.06 deg. Measured over seeds 1-100: every run within 3 cm and
+  // 0.3 deg, mean errors 3.8 / 3.4 mm and 0.04 deg (clean), 6.2 / 1.7 mm and 0.04 deg
+  // (outliers). With chord tangents (tangent_points = 2) half of the outlier runs drifted
+  // along the hallway.
+  const auto none = [](const Points& p, int) { return p; };
+  const auto scatter = [](const Points& p, int seed) {
+    return scatter_outliers(p, 0.3, 3.0, static_cast<std::uint64_t>(seed));
+  };
+  EXPECT_EQ(successes(10, IcpOptions{}, 0.02, 0.03, 0.3, none), 10);
+  EXPECT_EQ(successes(10, IcpOptions{}, 0.02, 0.03, 0.3, scatter), 10);
+  IcpOptions chords;
+  chords.tangent_points = 2;
+  EXPECT_LT(successes(10, chords, 0.02, 0.03, 0.3, scatter), 10);
+}
+
+TEST(SegmentScan, AdaptiveGapNeverJoinsACoarseScanWhole) {
+  // The adaptive part r sin d / sin(lambda - d) explodes as the beam step d nears lambda; it
+  // applies only up to lambda / 2 and to at most 4 beam spacings. The hallway keeps at least
+  // 4 separate pieces (the column, the pillar's edges, the recess) whatever the beam count;
+  // without the cap 90 beams gave 2 segments.
+  for (int beams : {36, 37, 40, 45, 60, 90, 180, 360, 720}) {
+    const RangeScan s = simulate_segment_scan(seed004_hallway(), {0, 0, 0}, beams, deg2rad(-180.0),
+                                              2 * M_PI / beams, 8.0);
+    const auto segs = segment_scan(scan_returns(s), 0.08, 0.04, deg2rad(10.0));
+    EXPECT_GE(segs.size(), 4u) << beams << " beams";
+  }
+}
+
+TEST(RobustIcp, CovarianceMatchesTheScatterOfNoisyMatches) {
+  // 60 noisy matches of the hallway pair: the reported standard deviations (of x, y, theta
+  // of the pose, turned 20 deg and 0.5 m from the reference) agree with the scatter of the
+  // estimates within a factor of 3. Measured: reported / sample 0.61, 0.51, 1.21: the
+  // Gauss-Newton covariance ignores the tangents' own noise and is optimistic in position by
+  // about 2x (README).
+  std::vector<Pose2> poses;
+  Eigen::Vector3d reported = Eigen::Vector3d::Zero();
+  const int n = 60;
+  for (int k = 0; k < n; ++k) {
+    RangeScan a = simulate_segment_scan(seed004_hallway(), {0, 0, 0}, 720, deg2rad(-180.0),
+                                        deg2rad(0.5), 8.0);
+    RangeScan b =
+        simulate_segment_scan(seed004_hallway(), kMotion, 720, deg2rad(-180.0), deg2rad(0.5), 8.0);
+    add_range_noise(a, 0.01, 5000 + 2 * k);
+    add_range_noise(b, 0.01, 5001 + 2 * k);
+    const IcpResult r = match_scans(scan_returns(a), scan_returns(b), kMotion, IcpOptions{});
+    poses.push_back(r.pose);
+    reported += r.covariance.diagonal().cwiseSqrt() / n;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero(), var = Eigen::Vector3d::Zero();
+  for (const Pose2& p : poses) mean += Eigen::Vector3d(p.x, p.y, p.theta) / n;
+  for (const Pose2& p : poses) {
+    const Eigen::Vector3d d = Eigen::Vector3d(p.x, p.y, p.theta) - mean;
+    var += d.cwiseProduct(d) / (n - 1);
+  }
+  const Eigen::Vector3d sample = var.cwiseSqrt();
+  std::cout << "[covariance] reported std " << reported.transpose() << ", sample std "
+            << sample.transpose() << "\n";
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_GT(reported[i], sample[i] / 3.0) << i;
+    EXPECT_LT(reported[i], 3.0 * sample[i]) << i;
   }
 }
 

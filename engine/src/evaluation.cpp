@@ -134,26 +134,6 @@ OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double ke
   return world;
 }
 
-std::string to_string(EstimatorKind kind) {
-  switch (kind) {
-    case EstimatorKind::Correlation:
-      return "correlation";
-    case EstimatorKind::Icp:
-      return "icp";
-    case EstimatorKind::CorrelationIcp:
-      return "correlation+icp";
-  }
-  return "?";
-}
-
-EstimatorKind parse_estimator_kind(const std::string& name) {
-  for (EstimatorKind k :
-       {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp}) {
-    if (to_string(k) == name) return k;
-  }
-  throw Error("the estimator must be correlation, icp or correlation+icp, not '" + name + "'");
-}
-
 namespace {
 
 /// An estimator shared with another owner (the correlation search of CorrelationIcp).

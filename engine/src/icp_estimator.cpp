@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "gridloc/grids/error.hpp"
 
@@ -18,19 +19,31 @@ const RangeScan& scan_of(const Observation& observation, const char* who) {
   return *observation.scan;
 }
 
-/// The pose lies outside the window (x, y in the window's frame, or heading).
-bool outside(const Pose2& pose, const SearchWindow& w) {
-  // The window's x and y half sizes are along the world axes, as in the correlation search.
-  const double dx = pose.x - w.center.x, dy = pose.y - w.center.y;
-  return std::abs(dx) > w.half_xy || std::abs(dy) > w.half_xy ||
+/// The pose lies outside the window: beyond its half sizes in the map's grid frame (the
+/// frame the correlation search's lattice lies in), or its heading beyond half_theta.
+bool outside(const Pose2& pose, const SearchWindow& w, const GridGeometry& g) {
+  const Pose2 p = g.to_grid_frame(pose), c = g.to_grid_frame(w.center);
+  return std::abs(p.x - c.x) > w.half_xy || std::abs(p.y - c.y) > w.half_xy ||
          std::abs(normalize_angle(pose.theta - w.center.theta)) > w.half_theta;
+}
+
+void check_verdict(const VerdictOptions& v) {
+  if (!(v.spread_scale_m > 0.0) || !std::isfinite(v.spread_scale_m)) {
+    throw Error("VerdictOptions.spread_scale_m must be positive and finite, got " +
+                std::to_string(v.spread_scale_m));
+  }
+  if (!(v.localized_confidence >= 0.0 && v.localized_confidence <= 1.0)) {
+    throw Error("VerdictOptions.localized_confidence must lie in [0, 1], got " +
+                std::to_string(v.localized_confidence));
+  }
 }
 
 }  // namespace
 
 IcpEstimator::IcpEstimator(const OccupancyMap& map, IcpEstimatorOptions options)
-    : contour_(map, options.contour), options_(options) {
+    : contour_(map, options.contour), geometry_(map.geometry), options_(options) {
   validate(options_.icp);  // fails at construction, not at the first scan
+  check_verdict(options_.verdict);
 }
 
 Estimate IcpEstimator::estimate(const Observation& observation, const SearchWindow& window) const {
@@ -44,7 +57,19 @@ Estimate IcpEstimator::estimate(const Observation& observation, const SearchWind
 
 IcpResult IcpEstimator::match(const Observation& observation, const Pose2& start) const {
   const RangeScan& scan = scan_of(observation, "icp estimator");
-  return match_scan_to_map(contour_, scan_returns(scan), start, options_.icp);
+  const auto points = scan_returns(scan);
+  try {
+    return match_scan_to_map(contour_, points, start, options_.icp);
+  } catch (const Error&) {
+    // The scan and options are valid (checked above and at construction): what is left is a
+    // scan ICP cannot use, too few returns in segments. Not an input error but a failure to
+    // localize with ICP: a not converged result at the start, nothing constrained.
+    IcpResult none;
+    none.pose = start;
+    none.covariance =
+        Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()).asDiagonal();
+    return none;
+  }
 }
 
 Estimate IcpEstimator::to_estimate(const IcpResult& r, const SearchWindow& window) const {
@@ -63,7 +88,7 @@ Estimate IcpEstimator::to_estimate(const IcpResult& r, const SearchWindow& windo
   e.confidence = r.converged ? parts.fit * parts.sharpness : 0.0;
   e.agreement = std::numeric_limits<double>::quiet_NaN();
   e.covariance = r.covariance;
-  e.on_window_edge = outside(r.pose, window);
+  e.on_window_edge = outside(r.pose, window, geometry_);
   e.verdict = !e.on_window_edge && e.confidence >= options_.verdict.localized_confidence
                   ? Verdict::Localized
                   : Verdict::NotLocalized;

@@ -13,10 +13,11 @@ namespace gridloc {
 
 MapContour::MapContour(const OccupancyMap& map, const MapContourOptions& options) {
   if (map.geometry.size() == 0) throw Error("MapContour: the map is empty");
-  if (!(options.normal_radius_m > 0.0) || !(options.bucket_m > 0.0)) {
-    throw Error("MapContourOptions: normal_radius_m and bucket_m must be positive, got " +
-                std::to_string(options.normal_radius_m) + " and " +
-                std::to_string(options.bucket_m));
+  if (!(options.normal_radius_m > 0.0) || !(options.bucket_m > 0.0) ||
+      !std::isfinite(options.normal_radius_m) || !std::isfinite(options.bucket_m)) {
+    throw Error(
+        "MapContourOptions: normal_radius_m and bucket_m must be positive and finite, got " +
+        std::to_string(options.normal_radius_m) + " and " + std::to_string(options.bucket_m));
   }
   const GridGeometry& g = map.geometry;
   const EvidenceGrid thinned = make_thinned_evidence(map);

@@ -39,7 +39,9 @@ class PointBuckets {
   /// `radius` of q (a superset of the disc).
   template <typename F>
   void for_each_near(const Eigen::Vector2d& q, double radius, F&& f) const {
-    const int reach = static_cast<int>(std::ceil(radius / cell_));
+    // Clamped in double: a radius beyond the grid covers it all, and cannot overflow the cast.
+    const int reach =
+        static_cast<int>(std::min(std::ceil(radius / cell_), static_cast<double>(nx_ + ny_)));
     // Clamped in double first, so a query far outside the grid cannot overflow the cast.
     const int cx = static_cast<int>(std::clamp(std::floor((q.x() - lo_.x()) / cell_), -1.0 - reach,
                                                static_cast<double>(nx_ + reach)));

@@ -29,32 +29,24 @@ Pose2 relative_pose(const Pose2& a, const Pose2& b) {
   return {c * dx + s * dy, -s * dx + c * dy, normalize_angle(b.theta - a.theta)};
 }
 
-std::string to_string(PairMatcher matcher) {
-  switch (matcher) {
-    case PairMatcher::Icp:
-      return "icp";
-    case PairMatcher::Correlation:
-      return "correlation";
-    case PairMatcher::CorrelationIcp:
-      return "correlation+icp";
-  }
-  return "?";
-}
-
-PairMatcher parse_pair_matcher(const std::string& name) {
-  for (PairMatcher m : {PairMatcher::Icp, PairMatcher::Correlation, PairMatcher::CorrelationIcp}) {
-    if (to_string(m) == name) return m;
-  }
-  throw Error("the estimator must be icp, correlation or correlation+icp, not '" + name + "'");
-}
-
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& o, bool* converged) {
   if (converged != nullptr) *converged = true;
   const auto ref_points = scan_returns(reference);
   const auto cur_points = scan_returns(current);
-  if (o.matcher == PairMatcher::Icp) {
-    const IcpResult r = match_scans(ref_points, cur_points, prior, o.icp);
+  // ICP on scans it cannot use (too few returns in segments) fails to match, like a match
+  // that does not converge; it does not end the evaluation.
+  const auto icp = [&](const Pose2& start) {
+    try {
+      return match_scans(ref_points, cur_points, start, o.icp);
+    } catch (const Error&) {
+      IcpResult none;
+      none.pose = start;
+      return none;
+    }
+  };
+  if (o.matcher == EstimatorKind::Icp) {
+    const IcpResult r = icp(prior);
     if (converged != nullptr) *converged = r.converged;
     return r.pose;
   }
@@ -81,8 +73,8 @@ Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pos
   w.half_theta = o.prior_noise_theta + o.window_margin_theta;
   w.step_xy = o.map_resolution;
   const Pose2 coarse = estimator.estimate(obs, w).pose;
-  if (o.matcher == PairMatcher::Correlation) return coarse;
-  const IcpResult r = match_scans(ref_points, cur_points, coarse, o.icp);
+  if (o.matcher == EstimatorKind::Correlation) return coarse;
+  const IcpResult r = icp(coarse);
   if (r.converged && std::hypot(r.pose.x - coarse.x, r.pose.y - coarse.y) <= o.refine_max_shift_m &&
       std::abs(normalize_angle(r.pose.theta - coarse.theta)) <= o.refine_max_turn_rad) {
     return r.pose;

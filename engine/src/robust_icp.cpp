@@ -141,6 +141,17 @@ void make_pairs(const Model& model, const std::vector<Eigen::Vector2d>& src,
 
 constexpr std::size_t kSettleSteps = 5;
 
+/// The residual's gradient for an increment that turns about the pose's position t.
+Eigen::Vector3d jacobian(const Pair& p, const Eigen::Vector2d& t) {
+  const Eigen::Vector2d v = p.q - t;
+  return {p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-v.y(), v.x()))};
+}
+
+/// The covariance of a pose nothing constrains.
+Eigen::Matrix3d unconstrained() {
+  return Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()).asDiagonal();
+}
+
 /// Every pose of `history` within settled_xy_m and settled_theta_rad of the last.
 bool settled(const std::vector<Pose2>& history, const IcpOptions& o) {
   const Pose2& last = history.back();
@@ -202,7 +213,13 @@ std::vector<Segment> segment_scan(const std::vector<Eigen::Vector2d>& points, do
     const auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
     std::nth_element(steps.begin(), mid, steps.end());
     const double d = *mid;
-    if (d < breakpoint_angle_rad) growth = std::sin(d) / std::sin(breakpoint_angle_rad - d);
+    // Near lambda the ratio explodes and would join a whole coarse scan into one segment: a
+    // scan whose beams are more than lambda / 2 apart keeps the fixed gap, and the adaptive
+    // part never exceeds four beam spacings (r sin d each). The cap also measured better on
+    // both the Intel pairs and the seed 004 hallway than the bare ratio (bench/RESULTS.md).
+    if (d <= 0.5 * breakpoint_angle_rad) {
+      growth = std::min(std::sin(d) / std::sin(breakpoint_angle_rad - d), 4.0 * std::sin(d));
+    }
   }
   std::vector<Segment> segments;
   std::size_t begin = 0;
@@ -262,7 +279,7 @@ void check_pose(const Pose2& initial) {
 
 /// The matching points of `current`: N_s per segment spread evenly along it (seed 004 §3.2).
 std::vector<Eigen::Vector2d> matching_points(const std::vector<Eigen::Vector2d>& current,
-                                             const IcpOptions& options) {
+                                             const IcpOptions& options, const char* who) {
   std::vector<Segment> kept;
   std::size_t kept_points = 0, base_total = 0;
   for (const auto& seg :
@@ -290,8 +307,10 @@ std::vector<Eigen::Vector2d> matching_points(const std::vector<Eigen::Vector2d>&
     }
   }
   if (src.size() < 3) {
-    throw Error("match_scans: current scan gives " + std::to_string(src.size()) +
-                " matching points, needs at least 3 (check gap_m and min_segment_points)");
+    throw Error(std::string(who) + ": the scan gives " + std::to_string(src.size()) +
+                " matching points, needs at least 3: too few returns in segments of " +
+                std::to_string(options.min_segment_points) + " or more points (IcpOptions gap_m, " +
+                "min_segment_points)");
   }
   return src;
 }
@@ -300,6 +319,8 @@ std::vector<Eigen::Vector2d> matching_points(const std::vector<Eigen::Vector2d>&
 IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, const Pose2& initial,
                 const IcpOptions& options) {
   IcpResult result;
+  // Unknown until the final pairs say otherwise: infinite variances, no correlation.
+  result.covariance = unconstrained();
   double theta = initial.theta;
   Eigen::Vector2d t(initial.x, initial.y);
   std::vector<Pair> pairs;
@@ -316,15 +337,17 @@ IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, con
     // sigma of the errors at the pose of the previous step (seed 004 eq. (5)-(6)).
     sigma = residual_scale(residuals, options.scale, options.min_scale_m);
 
-    // Gauss-Newton on a left increment (dx, dy, dtheta) about the reference origin: the
-    // residual n.(q - m) has gradient (n_x, n_y, n.(-q_y, q_x)). Seed 004 eq. (7) solves the
-    // same weighted normal equations in the linear parameters (a, b, c, d) of eq. (1); the
-    // 3-parameter form keeps the rotation rigid.
+    // Gauss-Newton on an increment (dx, dy, dtheta) that turns about the pose's own position
+    // t: q' = R(dtheta) (q - t) + t + (dx, dy). The residual n.(q - m) then has gradient
+    // (n_x, n_y, n.perp(q - t)), which does not grow with the distance of t from the model's
+    // origin (a map in a far-off frame stays well conditioned), and the increment is the
+    // pose's own change. Seed 004 eq. (7) solves the same weighted normal equations in the
+    // linear parameters (a, b, c, d) of eq. (1); the 3-parameter form keeps the rotation rigid.
     H.setZero();
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     for (const auto& p : pairs) {
       const double w = options.robust ? huber_weight(p.r / sigma, options.huber_k) : 1.0;
-      const Eigen::Vector3d J(p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-p.q.y(), p.q.x())));
+      const Eigen::Vector3d J = jacobian(p, t);
       H.noalias() += w * J * J.transpose();
       g.noalias() += w * p.r * J;
     }
@@ -335,8 +358,7 @@ IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, con
     // nearly degenerate system (few pairs on one wall) would throw the pose away. Shortened.
     const double step = delta.head<2>().norm();
     if (step > options.max_correspondence_m) delta *= options.max_correspondence_m / step;
-    const Eigen::Rotation2Dd dR(delta.z());
-    t = dR * t + delta.head<2>();
+    t += delta.head<2>();
     theta = normalize_angle(theta + delta.z());
     result.iterations = it + 1;
     if (delta.head<2>().norm() < options.converged_xy_m &&
@@ -374,24 +396,15 @@ IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, con
       result.fitting_pairs += std::abs(p.r) <= options.fit_distance_m ? 1 : 0;
       const bool inlier = std::abs(p.r) <= options.huber_k * sigma;
       inliers += inlier ? 1 : 0;
-      const Eigen::Vector3d J(p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-p.q.y(), p.q.x())));
+      const Eigen::Vector3d J = jacobian(p, t);
       if (inlier) H.noalias() += J * J.transpose();
     }
     result.rms_m = std::sqrt(sum2 / static_cast<double>(pairs.size()));
     result.inlier_share = static_cast<double>(inliers) / static_cast<double>(pairs.size());
-    // Gauss-Newton covariance sigma^2 H^-1 of the inliers' left increment; infinite along a
-    // direction the pairs do not constrain (a corridor's axis).
+    // Gauss-Newton covariance sigma^2 H^-1 of the inliers; the increment is the pose's own
+    // change (it turns about t), so this is the covariance of (x, y, theta).
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(H);
-    if (inliers >= 3 && lu.isInvertible()) {
-      // The increment turns about the origin; about the pose's position a turn dtheta also
-      // moves it by dtheta * (-y, x).
-      Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
-      A(0, 2) = -t.y();
-      A(1, 2) = t.x();
-      result.covariance = A * (sigma * sigma * lu.inverse()) * A.transpose();
-    } else {
-      result.covariance = Eigen::Matrix3d::Identity() * std::numeric_limits<double>::infinity();
-    }
+    if (inliers >= 3 && lu.isInvertible()) result.covariance = sigma * sigma * lu.inverse();
   }
   result.scale_m = sigma;
   return result;
@@ -431,11 +444,29 @@ IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
                 std::to_string(options.gap_m) + " m");
   }
   const detail::PointBuckets grid(reference, usable, options.max_correspondence_m);
+  std::vector<Eigen::Vector2d> normals;
+  if (options.tangent_points > 2) {
+    // Each point's tangent: the total-least-squares line of up to tangent_points neighbours
+    // of its segment, centred on it (a chord of two noisy neighbours points anywhere).
+    normals.resize(reference.size(), Eigen::Vector2d::UnitY());
+    const int half = static_cast<int>(options.tangent_points / 2);
+    for (const Segment& seg : ref_segments) {
+      if (seg.size() < 2) continue;
+      for (std::size_t i = seg.begin; i < seg.end; ++i) {
+        Segment local;
+        local.begin = std::max<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(i) - half,
+                                               static_cast<std::ptrdiff_t>(seg.begin));
+        local.end = std::min(i + static_cast<std::size_t>(half) + 1, seg.end);
+        fit_line(reference, local);
+        normals[i] = Eigen::Vector2d(-local.direction.y(), local.direction.x());
+      }
+    }
+  }
   // Seed 004 puts the control points on the previous curve and the tangents on the current
   // one; here the roles are swapped so the result is directly the pose of `current` in the
   // reference frame (the same problem, with the tangents on the scan we index once).
-  const Model model{reference, grid, &segment_of, nullptr};
-  return solve(model, matching_points(current, options), initial, options);
+  const Model model{reference, grid, &segment_of, normals.empty() ? nullptr : &normals};
+  return solve(model, matching_points(current, options, "match_scans"), initial, options);
 }
 
 IcpResult match_scan_to_map(const MapContour& contour, const std::vector<Eigen::Vector2d>& scan,
@@ -452,7 +483,7 @@ IcpResult match_scan_to_map(const MapContour& contour, const std::vector<Eigen::
                 " contour points with a normal, needs at least 3");
   }
   const Model model{contour.points(), contour.buckets(), nullptr, &contour.normals()};
-  return solve(model, matching_points(scan, options), initial, options);
+  return solve(model, matching_points(scan, options, "match_scan_to_map"), initial, options);
 }
 
 }  // namespace gridloc

@@ -137,7 +137,10 @@ void run(const EvalArgs& a) {
                                 {"maps", names},
                                 {"seed", a.seed},
                                 {"strategy", a.search.strategy},
+                                // The sonar noise; the laser's is laser_noise_m.
                                 {"noise", a.noisy ? "noisy" : a.noise},
+                                {"laser_noise_m", a.laser.enabled ? nlohmann::json(a.laser.sigma_m)
+                                                                  : nlohmann::json(nullptr)},
                                 {"noisy", a.noisy},
                                 {"sensor", a.laser.enabled ? "laser" : "sonar"},
                                 {"echo_filter", a.echo_filter},

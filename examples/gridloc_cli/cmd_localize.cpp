@@ -23,18 +23,15 @@ struct LocalizeArgs {
 
 void run(const LocalizeArgs& a) {
   if (a.repeat < 1) throw Error("--repeat must be >= 1");
-  if (a.estimator != "correlation" && a.estimator != "icp" && a.estimator != "correlation+icp") {
-    throw Error("--estimator must be correlation, icp or correlation+icp, not '" + a.estimator +
-                "'");
-  }
-  if (a.estimator != "correlation" && a.inputs.scan.empty()) {
+  const EstimatorKind kind = parse_estimator_kind(a.estimator);
+  if (kind != EstimatorKind::Correlation && a.inputs.scan.empty()) {
     throw Error("--estimator " + a.estimator +
                 " needs a laser scan (--scan): ICP finds no tangents in a sonar ring's echoes");
   }
-  if (a.estimator == "icp" && a.inputs.whole_map) {
+  if (kind == EstimatorKind::Icp && a.inputs.whole_map) {
     throw Error(
-        "--estimator icp needs --prior: ICP only refines a pose (use correlation+icp "
-        "with --global)");
+        "--estimator icp needs --prior: ICP only refines a pose (use correlation+icp with "
+        "--global)");
   }
   Localization l = prepare_localization(a.inputs);
   const Observation& obs = l.observation;
@@ -42,9 +39,9 @@ void run(const LocalizeArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const CorrelationEstimator> correlation = std::move(l.estimator);
   std::unique_ptr<Estimator> chosen;
-  if (a.estimator != "correlation") {
+  if (kind != EstimatorKind::Correlation) {
     auto icp = std::make_shared<const IcpEstimator>(correlation->map());
-    if (a.estimator == "icp") {
+    if (kind == EstimatorKind::Icp) {
       chosen = std::make_unique<IcpEstimator>(*icp);
     } else {
       chosen = std::make_unique<CorrelationIcpEstimator>(correlation, icp);

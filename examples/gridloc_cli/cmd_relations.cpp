@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "commands.hpp"
 #include "gridloc/engine/relation_eval.hpp"
@@ -21,7 +22,7 @@ struct RelationsArgs {
 
 void run(const RelationsArgs& a) {
   RelationEvalOptions options = a.options;
-  options.matcher = parse_pair_matcher(a.estimator);
+  options.matcher = parse_estimator_kind(a.estimator);
   const CarmenLog log = load_carmen_log(a.log);
   const auto relations = load_slam_relations(a.relations);
   const auto pairs = pair_relations(relations, log, a.time_offset, a.tolerance);
@@ -87,13 +88,18 @@ void add_relations(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--icp-converged", icp.converged_xy_m,
                   "ICP: stop when an update moves less than this (m; the same in rad turns)")
-      ->each([&icp](const std::string&) { icp.converged_theta_rad = icp.converged_xy_m; })
+      // each() runs before the value is stored: parse it here for the heading threshold.
+      ->each([&icp](const std::string& v) { icp.converged_theta_rad = std::stod(v); })
       ->capture_default_str();
   cmd->add_option("--icp-breakpoint-angle", icp.breakpoint_angle_rad,
                   "ICP: grazing angle of the range-adaptive gap (rad; 0: fixed gap)")
       ->capture_default_str();
   cmd->add_option("--icp-min-matching-points", icp.min_matching_points,
                   "ICP: at least this many matching points per scan")
+      ->capture_default_str();
+  cmd->add_option("--icp-tangent-points", icp.tangent_points,
+                  "ICP: the reference's tangent is the line through this many points (<= 2: "
+                  "the chord to a neighbour)")
       ->capture_default_str();
   cmd->add_option("--icp-max-iterations", icp.max_iterations, "ICP iteration limit")
       ->capture_default_str();

@@ -21,6 +21,19 @@ struct Observation {
   std::vector<bool> rejected = {};  ///< one flag per sonar, or empty
 };
 
+/// The estimators a caller can choose by name (the command line's --estimator and
+/// --estimators, the evaluation's configurations, the relations' matchers).
+enum class EstimatorKind {
+  Correlation,     ///< the correlation search (CorrelationEstimator, seed 001)
+  Icp,             ///< robust ICP from the prior (IcpEstimator, match_scans; seed 004)
+  CorrelationIcp,  ///< the correlation search, then ICP from its winner
+};
+
+/// "correlation", "icp" or "correlation+icp".
+std::string to_string(EstimatorKind kind);
+/// The kind to_string() names; gridloc::Error listing the choices otherwise.
+EstimatorKind parse_estimator_kind(const std::string& name);
+
 class Estimator {
  public:
   virtual ~Estimator() = default;

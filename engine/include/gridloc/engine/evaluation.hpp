@@ -16,21 +16,10 @@
 
 namespace gridloc {
 
-/// The estimator a configuration runs (issue 5: the estimators compared on the same trials).
-enum class EstimatorKind {
-  Correlation,     ///< CorrelationEstimator with the configuration's local and global models
-  Icp,             ///< IcpEstimator from the prior (laser protocol only)
-  CorrelationIcp,  ///< CorrelationIcpEstimator (laser protocol only)
-};
-
-/// "correlation", "icp" or "correlation+icp".
-std::string to_string(EstimatorKind kind);
-/// The kind to_string() names; gridloc::Error listing the choices otherwise.
-EstimatorKind parse_estimator_kind(const std::string& name);
-
 struct EvalConfiguration {
   LocalModel local = LocalModel::Oriented;
   GlobalModel global = GlobalModel::Thinned;
+  /// Icp and CorrelationIcp need the laser protocol; Icp ignores local and global.
   EstimatorKind estimator = EstimatorKind::Correlation;
 };
 

@@ -20,21 +20,25 @@ struct IcpEstimatorOptions {
 };
 
 /// Scan-to-map ICP from the window's centre. The window bounds the answer: a pose that ends
-/// outside it is reported with on_window_edge set and verdict "not localized". Estimate:
+/// outside it (half sizes in the map's grid frame, as the correlation search's lattice) is
+/// reported with on_window_edge set and verdict "not localized". Estimate:
 /// pose = lattice_pose = the ICP pose; score = normalized_score = fit, the share of matching
 /// points within IcpOptions::fit_distance_m of a tangent; confidence = fit *
 /// sharpness when ICP converged (0 otherwise), distinctness 1 (ICP sees one hypothesis);
 /// covariance = ICP's Gauss-Newton covariance; stats.poses_scored = iterations.
 class IcpEstimator final : public Estimator {
  public:
-  /// Builds the map's contour model; throws gridloc::Error for bad options or an empty map.
+  /// Builds the map's contour model; throws gridloc::Error for bad options (ICP, contour,
+  /// verdict) or an empty map.
   explicit IcpEstimator(const OccupancyMap& map, IcpEstimatorOptions options = {});
 
   /// Throws gridloc::Error for a sonar observation, a bad scan or window.
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
   std::string name() const override { return "icp"; }
 
-  /// ICP of the observation's scan from `start` (world frame).
+  /// ICP of the observation's scan from `start` (world frame). A valid scan ICP cannot use
+  /// (fewer than 3 matching points) gives a not-converged result at `start`, covariance
+  /// infinite; a sonar observation or a bad scan throws gridloc::Error.
   IcpResult match(const Observation& observation, const Pose2& start) const;
   /// The Estimate of an ICP result, the window deciding on_window_edge (see the class).
   Estimate to_estimate(const IcpResult& result, const SearchWindow& window) const;
@@ -44,6 +48,7 @@ class IcpEstimator final : public Estimator {
 
  private:
   MapContour contour_;
+  GridGeometry geometry_;  ///< the map's, for the window's frame
   IcpEstimatorOptions options_;
 };
 

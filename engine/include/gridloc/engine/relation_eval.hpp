@@ -8,26 +8,18 @@
 #include <vector>
 
 #include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/estimator.hpp"
 #include "gridloc/engine/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 #include "gridloc/sensors/slam_relations.hpp"
 
 namespace gridloc {
 
-/// How a relation's two scans are matched.
-enum class PairMatcher {
-  Icp,             ///< seed 004's robust ICP (match_scans) from the prior
-  Correlation,     ///< the correlation search of the current scan on the reference scan's map
-  CorrelationIcp,  ///< the correlation search, then ICP from its winner
-};
-
-/// "icp", "correlation" or "correlation+icp".
-std::string to_string(PairMatcher matcher);
-/// The matcher named by to_string(); gridloc::Error naming the choices otherwise.
-PairMatcher parse_pair_matcher(const std::string& name);
-
 struct RelationEvalOptions {
-  PairMatcher matcher = PairMatcher::Icp;
+  /// How a relation's two scans are matched: Icp (match_scans from the prior), Correlation
+  /// (the search of the current scan on the reference scan's map) or CorrelationIcp (the
+  /// search, then ICP from its winner).
+  EstimatorKind matcher = EstimatorKind::Icp;
   std::uint64_t seed = 1;
   /// The prior is the logged motion (the logs hold SLAM-corrected poses, not raw odometry)
   /// plus uniform noise within these bounds on x, y (m) and theta (rad).
@@ -61,7 +53,7 @@ struct RelationEvalReport {
   ErrorStats translation_error_m;  ///< |translation of relation^-1 * estimate|, over all pairs
   ErrorStats rotation_error_deg;   ///< |rotation of relation^-1 * estimate|
   int failures = 0;
-  int not_converged = 0;   ///< ICP matches that hit the iteration limit (counted as failures)
+  int not_converged = 0;   ///< ICP alone: matches that did not converge (counted as failures)
   double median_ms = 0.0;  ///< per match, the reference map's construction included
 };
 
@@ -69,7 +61,10 @@ struct RelationEvalReport {
 Pose2 relative_pose(const Pose2& a, const Pose2& b);
 
 /// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
-/// `converged` is false when ICP hit its iteration limit.
+/// `converged`: for Icp, whether ICP converged (false at the iteration limit, with too few
+/// pairs, or on a scan ICP cannot use, whose estimate is then the prior); Correlation and
+/// CorrelationIcp always answer (true; CorrelationIcp keeps the search's pose when ICP fails).
+/// Throws gridloc::Error for a scan that fails validate().
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& options, bool* converged = nullptr);
 

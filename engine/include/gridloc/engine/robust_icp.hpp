@@ -41,9 +41,13 @@ struct IcpOptions {
   /// (not 1) is that reading: a lone spurious return or a pair never steers the match.
   std::size_t min_segment_points = 3;
   /// Grazing angle lambda (rad) of the range-adaptive gap (segment_scan): consecutive points
-  /// r apart in range with beam step d still join when within gap_m + r sin(d)/sin(lambda-d),
-  /// so a 1 degree laser's walls at 5-10 m stay whole. 0 keeps the seed's fixed gap.
+  /// r apart in range with beam step d still join when within gap_m + r sin(d)/sin(lambda-d)
+  /// (at most 4 beam spacings; segment_scan), so a 1 degree laser's walls at 5-10 m stay
+  /// whole. 0 keeps the seed's fixed gap.
   double breakpoint_angle_rad = 0.174532925199;  // 10 deg
+  /// The reference scan's tangent at a point: the line through this many points of its
+  /// segment centred on it; 2 or fewer: the chord to the neighbour that passes closer.
+  std::size_t tangent_points = 5;
   bool use_complexity = true;  ///< N_s = ceil(C_f * N_m) per segment; false: every point
   /// With use_complexity, at least this many matching points (or every kept point if fewer):
   /// when the N_s sum to less, each N_s grows by one factor. Seed 004's 720-point scans give
@@ -81,8 +85,9 @@ struct IcpResult {
   std::size_t pairs = 0;            ///< pairs used in the last iteration
   std::size_t matching_points = 0;  ///< matching points drawn from the current scan
   std::size_t fitting_pairs = 0;    ///< final pairs within IcpOptions::fit_distance_m
-  /// Gauss-Newton covariance scale_m^2 H^-1 of the inlier pairs at `pose` (x, y, theta; a
-  /// left increment), infinite when they leave a direction unconstrained (a corridor's axis).
+  /// Gauss-Newton covariance scale_m^2 H^-1 of (x, y, theta) of `pose` from the inlier pairs;
+  /// infinite variances (no correlation) when they leave a direction unconstrained (a
+  /// corridor's axis) or are fewer than 3.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   double scale_m = 0.0;  ///< sigma used in the last iteration
 };
@@ -96,7 +101,8 @@ std::vector<Eigen::Vector2d> scan_returns(const RangeScan& scan);
 /// Splits an ordered scan into runs whose consecutive points are closer than `gap_m`
 /// (seed 004 §3.2), fits each a total-least-squares line and sets d_m, C_f and N_s with
 /// `resolution_m` = R_m. With `breakpoint_angle_rad` = lambda > 0 the gap grows with range:
-/// gap_m + r sin(d) / sin(lambda - d), d the scan's median angular step (IcpOptions). Throws
+/// gap_m + r min(sin(d) / sin(lambda - d), 4 sin(d)), d the scan's median angular step, r the
+/// previous point's range; scans with d > lambda / 2 keep the fixed gap (IcpOptions). Throws
 /// gridloc::Error if gap_m or resolution_m is not positive or lambda is outside [0, pi/2).
 std::vector<Segment> segment_scan(const std::vector<Eigen::Vector2d>& points, double gap_m,
                                   double resolution_m = 0.04, double breakpoint_angle_rad = 0.0);

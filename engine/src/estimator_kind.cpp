@@ -1,0 +1,29 @@
+// The names of the estimators, as the command line and the reports spell them.
+#include <string>
+
+#include "gridloc/engine/estimator.hpp"
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+
+std::string to_string(EstimatorKind kind) {
+  switch (kind) {
+    case EstimatorKind::Correlation:
+      return "correlation";
+    case EstimatorKind::Icp:
+      return "icp";
+    case EstimatorKind::CorrelationIcp:
+      return "correlation+icp";
+  }
+  return "?";
+}
+
+EstimatorKind parse_estimator_kind(const std::string& name) {
+  for (EstimatorKind k :
+       {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp}) {
+    if (to_string(k) == name) return k;
+  }
+  throw Error("the estimator must be correlation, icp or correlation+icp, not '" + name + "'");
+}
+
+}  // namespace gridloc
