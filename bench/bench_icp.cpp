@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
+#include "gridloc/engine/hallway_trials.hpp"
 #include "gridloc/engine/relation_eval.hpp"
 #include "gridloc/engine/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
@@ -52,17 +53,19 @@ RangeScan hallway_scan(const Pose2& pose, double noise_m, unsigned seed) {
   return scan;
 }
 
-enum class OutlierKind { Scattered, Appearing };
+/// The disturbances of trial `seed` of run_hallway_trials (engine/hallway_trials.hpp): noise
+/// seeds 1000 + 2 seed and 1001 + 2 seed, outliers drawn from seed. Seed 1 is a success of
+/// every kind; `gridloc hallway` gives the success rates over 100 seeds.
+constexpr unsigned kTrialSeed = 1;
 
 void BM_IcpHallway(benchmark::State& state, int outliers_pct, int noise_mm, OutlierKind kind) {
   const double share = static_cast<double>(outliers_pct) / 100.0;
   const double noise_m = static_cast<double>(noise_mm) / 1000.0;
-  // Distinct noise seeds for the two scans; the outliers keep the seed 4 of the earlier rows.
-  const Points ref = scan_returns(hallway_scan({0, 0, 0}, noise_m, 1));
-  Points cur = scan_returns(hallway_scan(kMotion, noise_m, 2));
+  const Points ref = scan_returns(hallway_scan({0, 0, 0}, noise_m, 1000 + 2 * kTrialSeed));
+  Points cur = scan_returns(hallway_scan(kMotion, noise_m, 1001 + 2 * kTrialSeed));
   if (share > 0.0) {
-    cur = kind == OutlierKind::Scattered ? scatter_outliers(std::move(cur), share, 3.0, 4)
-                                         : appear_obstacles(std::move(cur), share, 4);
+    cur = kind == OutlierKind::Scattered ? scatter_outliers(std::move(cur), share, 3.0, kTrialSeed)
+                                         : appear_obstacles(std::move(cur), share, kTrialSeed);
   }
   IcpResult r;
   for (auto _ : state) {
