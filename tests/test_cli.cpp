@@ -17,6 +17,7 @@
 #include "cli_support.hpp"
 #include "gridloc/engine/evaluation.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "test_support.hpp"
 
@@ -255,6 +256,40 @@ TEST_F(Cli, EvalJson) {
       seen,
       (std::set<std::pair<std::string, std::string>>{
           {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
+}
+
+TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
+  // A 360-beam scan simulated on the small apartment, written as angle,range lines.
+  const std::string map = test::map_path("apartment_small");
+  const OccupancyMap m = load_ros_map(map);
+  const Pose2 truth{6.5, 4.5, -2.0};
+  const RangeScan s = simulate_scan(m, truth, 360, 8.0, 0.01, 3);
+  std::string csv;
+  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
+  }
+  const std::string scan = dir.write("apartment.csv", csv);
+  for (const std::string estimator : {"icp", "correlation+icp"}) {
+    const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                      " --prior 6.7,4.3,-1.8 --estimator " + estimator);
+    ASSERT_EQ(r.status, 0) << estimator << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("estimator"), estimator);
+    EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - truth.x,
+                         j.at("pose").at("y").get<double>() - truth.y),
+              0.02)
+        << estimator << ": " << r.out;
+    EXPECT_EQ(j.at("verdict"), "localized") << r.out;
+  }
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                    " --global --estimator icp"),
+                   "--prior");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --pose 6.5,4.5,-2");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 6.5,4.5,-2 --estimator icp"),
+                   "laser scan");
 }
 
 TEST_F(Cli, HallwayReportsSeed004sFigures) {
