@@ -215,8 +215,9 @@ std::vector<Segment> segment_scan(const std::vector<Eigen::Vector2d>& points, do
     const double d = *mid;
     // Near lambda the ratio explodes and would join a whole coarse scan into one segment: a
     // scan whose beams are more than lambda / 2 apart keeps the fixed gap, and the adaptive
-    // part never exceeds four beam spacings (r sin d each). The cap also measured better on
-    // both the Intel pairs and the seed 004 hallway than the bare ratio (bench/RESULTS.md).
+    // part never exceeds four beam spacings (r sin d each). The cap also measured better than
+    // the bare ratio: Intel pairs 2.56 against 2.73 cm mean error, hallway with appearing
+    // obstacles 93 against 87 of 100 seeds (`gridloc relations`, `gridloc hallway`).
     if (d <= 0.5 * breakpoint_angle_rad) {
       growth = std::min(std::sin(d) / std::sin(breakpoint_angle_rad - d), 4.0 * std::sin(d));
     }
@@ -271,9 +272,9 @@ double residual_scale(const std::vector<double>& r, HuberScale rule, double floo
 
 namespace {
 
-void check_pose(const Pose2& initial) {
+void check_pose(const Pose2& initial, const char* who) {
   if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
-    throw Error("match_scans: initial pose is not finite");
+    throw Error(std::string(who) + ": initial pose is not finite");
   }
 }
 
@@ -426,7 +427,7 @@ IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
   }
   check_points(reference, "reference");
   check_points(current, "current");
-  check_pose(initial);
+  check_pose(initial, "match_scans");
 
   // Reference: points in segments of >= 2 points carry a tangent (seed 004 eq. (3)).
   const auto ref_segments =
@@ -477,7 +478,7 @@ IcpResult match_scan_to_map(const MapContour& contour, const std::vector<Eigen::
                 " points, needs at least 3");
   }
   check_points(scan, "current");
-  check_pose(initial);
+  check_pose(initial, "match_scan_to_map");
   if (contour.size() < 3) {
     throw Error("match_scan_to_map: the map has " + std::to_string(contour.size()) +
                 " contour points with a normal, needs at least 3");
