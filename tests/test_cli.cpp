@@ -292,6 +292,25 @@ TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
                    "laser scan");
 }
 
+TEST_F(Cli, APolygonMapFeedsTheCorrelationEngine) {
+  const std::string map = test::maps_dir() + "/polygons/room_l.yaml";
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --pose 1.5,1.5,0.3");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 1.7,1.3,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 1.5,
+                       j.at("pose").at("y").get<double>() - 1.5),
+            0.1)
+      << r.out;
+  const std::string open = dir.write("open.yaml", "boundary: [[0, 0], [4, 0], [4, 3], [0, 3]]\n");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(open) + " --readings " + quote(readings) +
+                                    " --prior 1,1,0"),
+                   "not closed");
+}
+
 TEST_F(Cli, HallwayReportsSeed004sFigures) {
   const CliRun r = run_cli(dir, "hallway --seeds 5 --noise 0.02 --outliers scattered --json");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -8,6 +8,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
 
 namespace gridloc::cli {
 
@@ -153,7 +154,10 @@ void OctomapArgs::add_to(CLI::App* cmd) {
 }
 
 OccupancyMap load_map(const std::string& path, const OctomapSlice& slice) {
-  return is_octomap_path(path) ? load_octomap(path, slice) : load_ros_map(path);
+  if (is_octomap_path(path)) return load_octomap(path, slice);
+  // A polygon map (a YAML file with a `boundary`) is rasterized at its own resolution.
+  if (is_polygon_map_file(path)) return rasterize_polygon_map(load_polygon_map(path));
+  return load_ros_map(path);
 }
 
 std::string data_dir() {

@@ -1,0 +1,270 @@
+#include "gridloc/grids/polygon_map.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Orientation of c relative to the line a -> b: > 0 left, < 0 right, 0 on it.
+double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return cross(b - a, c - a);
+}
+
+/// c lies on segment [a, b], given that the three are collinear.
+bool on_segment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) &&
+         std::min(a.y(), b.y()) <= c.y() && c.y() <= std::max(a.y(), b.y());
+}
+
+/// Segments [a, b] and [c, d] share at least one point (crossing or touching).
+bool segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d);
+  const double o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
+    return true;
+  }
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
+         (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+}
+
+std::string point_text(const Eigen::Vector2d& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+
+/// The checks of one ring on its own.
+void check_ring(const Polygon& ring, const std::string& name) {
+  if (ring.size() < 3) {
+    throw Error(name + " has " + std::to_string(ring.size()) + " vertices, needs at least 3");
+  }
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    if (!ring[i].allFinite()) {
+      throw Error(name + " vertex " + std::to_string(i) + " is not finite");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (ring[i] == ring[j]) {
+        throw Error(name + " repeats vertex " + point_text(ring[i]) + " (vertices " +
+                    std::to_string(j) + " and " + std::to_string(i) +
+                    "); only the closing vertex may repeat the first");
+      }
+    }
+  }
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d &a = ring[i], &b = ring[(i + 1) % n];
+    // The next edge folding back onto this one.
+    const Eigen::Vector2d& c = ring[(i + 2) % n];
+    if (orient(a, b, c) == 0.0 && (b - a).dot(c - b) < 0.0) {
+      throw Error(name + " is not simple: it folds back at vertex " + point_text(b));
+    }
+    for (std::size_t j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+      if (segments_meet(a, b, ring[j], ring[(j + 1) % n])) {
+        throw Error(name + " is not simple: edges " + std::to_string(i) + " " + point_text(a) +
+                    "-" + point_text(b) + " and " + std::to_string(j) + " " + point_text(ring[j]) +
+                    "-" + point_text(ring[(j + 1) % n]) + " cross");
+      }
+    }
+  }
+  if (signed_area2(ring) == 0.0) throw Error(name + " has zero area");
+}
+
+bool rings_meet(const Polygon& p, const Polygon& q) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      if (segments_meet(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
+    }
+  }
+  return false;
+}
+
+Eigen::Vector2d read_vertex(const YAML::Node& node, const std::string& where) {
+  if (!node.IsSequence() || node.size() != 2) {
+    throw Error(where + ": a vertex must be [x, y]");
+  }
+  try {
+    return {node[0].as<double>(), node[1].as<double>()};
+  } catch (const YAML::Exception&) {
+    throw Error(where + ": a vertex must be two numbers [x, y]");
+  }
+}
+
+Polygon read_ring(const YAML::Node& node, const std::string& where) {
+  if (!node.IsSequence()) throw Error(where + " must be a list of [x, y] vertices");
+  Polygon ring;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    ring.push_back(read_vertex(node[i], where + " vertex " + std::to_string(i)));
+  }
+  if (ring.size() < 2 || ring.front() != ring.back()) {
+    throw Error(where + " is not closed: its last vertex must repeat the first " +
+                (ring.empty() ? std::string("(it is empty)") : point_text(ring.front())));
+  }
+  ring.pop_back();
+  return ring;
+}
+
+}  // namespace
+
+double signed_area2(const Polygon& polygon) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    a += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  }
+  return a;
+}
+
+bool inside(const Polygon& polygon, const Eigen::Vector2d& p) {
+  bool in = false;
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Eigen::Vector2d &a = polygon[i], &b = polygon[j];
+    if (orient(a, b, p) == 0.0 && on_segment(a, b, p)) return false;  // on an edge
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles, double resolution) {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("polygon map: resolution must be positive, got " + std::to_string(resolution));
+  }
+  check_ring(boundary, "boundary");
+  if (signed_area2(boundary) < 0.0) std::reverse(boundary.begin(), boundary.end());
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const std::string name = "obstacle " + std::to_string(k);
+    Polygon& o = obstacles[k];
+    check_ring(o, name);
+    if (signed_area2(o) > 0.0) std::reverse(o.begin(), o.end());
+    for (const auto& v : o) {
+      if (!inside(boundary, v)) {
+        throw Error(name + " vertex " + point_text(v) + " is not strictly inside the boundary");
+      }
+    }
+    if (rings_meet(o, boundary)) throw Error(name + " touches the boundary");
+    for (std::size_t j = 0; j < k; ++j) {
+      if (rings_meet(o, obstacles[j]) || inside(obstacles[j], o.front()) ||
+          inside(o, obstacles[j].front())) {
+        throw Error(name + " touches or overlaps obstacle " + std::to_string(j) +
+                    ": join them into one polygon");
+      }
+    }
+  }
+  return {std::move(boundary), std::move(obstacles), resolution};
+}
+
+bool is_polygon_map_file(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".yaml" && ext != ".yml") return false;
+  try {
+    const YAML::Node root = YAML::LoadFile(path);
+    return root.IsMap() && root["boundary"];
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+PolygonMap load_polygon_map(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw Error("polygon map " + path + " not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw Error("polygon map " + path + ": not valid YAML: " + e.what());
+  }
+  if (!root.IsMap() || !root["boundary"]) {
+    throw Error("polygon map " + path + ": no 'boundary' key (is it a map_server map?)");
+  }
+  try {
+    double resolution = 0.05;
+    if (root["resolution"]) {
+      try {
+        resolution = root["resolution"].as<double>();
+      } catch (const YAML::Exception&) {
+        throw Error("resolution must be a number");
+      }
+    }
+    Polygon boundary = read_ring(root["boundary"], "boundary");
+    std::vector<Polygon> obstacles;
+    if (root["obstacles"]) {
+      if (!root["obstacles"].IsSequence()) throw Error("obstacles must be a list of rings");
+      for (std::size_t k = 0; k < root["obstacles"].size(); ++k) {
+        obstacles.push_back(read_ring(root["obstacles"][k], "obstacle " + std::to_string(k)));
+      }
+    }
+    return make_polygon_map(std::move(boundary), std::move(obstacles), resolution);
+  } catch (const Error& e) {
+    throw Error("polygon map " + path + ": " + e.what());
+  }
+}
+
+std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> polygon_edges(const PolygonMap& map) {
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> edges;
+  const auto add = [&](const Polygon& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      edges.emplace_back(ring[i], ring[(i + 1) % ring.size()]);
+    }
+  };
+  add(map.boundary);
+  for (const auto& o : map.obstacles) add(o);
+  return edges;
+}
+
+OccupancyMap rasterize_polygon_map(const PolygonMap& map, double resolution, double margin_m) {
+  if (resolution == 0.0) resolution = map.resolution;
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("rasterize_polygon_map: resolution must be positive, got " +
+                std::to_string(resolution));
+  }
+  if (!(margin_m >= 0.0) || !std::isfinite(margin_m)) {
+    throw Error("rasterize_polygon_map: margin must be >= 0, got " + std::to_string(margin_m));
+  }
+  Eigen::Vector2d lo = map.boundary.front(), hi = lo;
+  for (const auto& v : map.boundary) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  GridGeometry g;
+  g.resolution = resolution;
+  g.origin = lo - Eigen::Vector2d::Constant(margin_m);
+  g.width = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution));
+  g.height = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution));
+  if (static_cast<double>(g.width) * g.height > 4e8) {
+    throw Error("rasterize_polygon_map: " + std::to_string(g.width) + " x " +
+                std::to_string(g.height) + " cells is too large; use a coarser resolution");
+  }
+  OccupancyMap out(g, CellState::Unknown);
+  for (int iy = 0; iy < g.height; ++iy) {
+    for (int ix = 0; ix < g.width; ++ix) {
+      const Eigen::Vector2d c = g.origin + g.cell_center(ix, iy);
+      if (!inside(map.boundary, c)) continue;
+      bool in_obstacle = false;
+      for (const auto& o : map.obstacles) in_obstacle = in_obstacle || inside(o, c);
+      out.at(ix, iy) = in_obstacle ? CellState::Occupied : CellState::Free;
+    }
+  }
+  // Walls: every cell an edge passes through, sampled finer than a cell so none is skipped.
+  for (const auto& [a, b] : polygon_edges(map)) {
+    const int steps = static_cast<int>(std::ceil((b - a).norm() / (0.125 * resolution))) + 1;
+    for (int k = 0; k <= steps; ++k) {
+      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(k) / steps) - g.origin;
+      const Cell cell = g.cell_of(p.x(), p.y());
+      if (g.contains(cell.ix, cell.iy)) out.at(cell.ix, cell.iy) = CellState::Occupied;
+    }
+  }
+  return out;
+}
+
+}  // namespace gridloc
