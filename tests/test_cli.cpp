@@ -260,8 +260,8 @@ TEST_F(Cli, EvalJson) {
 
 TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
   // A 360-beam scan simulated on the small apartment, written as angle,range lines.
-  const std::string map = test::map_path("apartment_small");
-  const OccupancyMap m = load_ros_map(map);
+  const std::string map_file = test::map_path("apartment_small");
+  const OccupancyMap m = load_ros_map(map_file);
   const Pose2 truth{6.5, 4.5, -2.0};
   const RangeScan s = simulate_scan(m, truth, 360, 8.0, 0.01, 3);
   std::string csv;
@@ -270,7 +270,7 @@ TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
   }
   const std::string scan = dir.write("apartment.csv", csv);
   for (const std::string estimator : {"icp", "correlation+icp"}) {
-    const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+    const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
                                       " --prior 6.7,4.3,-1.8 --estimator " + estimator);
     ASSERT_EQ(r.status, 0) << estimator << ": " << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -281,24 +281,24 @@ TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
         << estimator << ": " << r.out;
     EXPECT_EQ(j.at("verdict"), "localized") << r.out;
   }
-  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
                                     " --global --estimator icp"),
                    "--prior");
-  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --pose 6.5,4.5,-2");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map_file) + " --pose 6.5,4.5,-2");
   ASSERT_EQ(sim.status, 0) << sim.err;
   const std::string readings = dir.write("r.json", sim.out);
-  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
-                                    " --prior 6.5,4.5,-2 --estimator icp"),
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map_file) + " --readings " +
+                                    quote(readings) + " --prior 6.5,4.5,-2 --estimator icp"),
                    "laser scan");
 }
 
 TEST_F(Cli, APolygonMapFeedsTheCorrelationEngine) {
-  const std::string map = test::maps_dir() + "/polygons/room_l.yaml";
-  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --pose 1.5,1.5,0.3");
+  const std::string map_file = test::maps_dir() + "/polygons/room_l.yaml";
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map_file) + " --pose 1.5,1.5,0.3");
   ASSERT_EQ(sim.status, 0) << sim.err;
   const std::string readings = dir.write("r.json", sim.out);
-  const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
-                                    " --prior 1.7,1.3,0.5");
+  const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --readings " +
+                                    quote(readings) + " --prior 1.7,1.3,0.5");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 1.5,

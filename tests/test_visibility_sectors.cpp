@@ -84,7 +84,9 @@ TEST(VisibilitySectors, AnLShapedRoomHasTheFiveSectorsOfItsReflexCorner) {
   EXPECT_EQ(s.sectors[square].visible.size(), 6u);  // sees every vertex
   for (int a : {square, east_near, east_far, north_near, north_far}) {
     for (int b : {square, east_near, east_far, north_near, north_far}) {
-      if (a != b) EXPECT_NE(s.sectors[a].label, s.sectors[b].label);
+      if (a != b) {
+        EXPECT_NE(s.sectors[a].label, s.sectors[b].label);
+      }
     }
   }
   // The far part of the east arm does not see (0, 6): the line (0, 6)-(3, 3) meets y = 0 at
