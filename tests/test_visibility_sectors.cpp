@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 
+#include "gridloc/sensors/rng.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
@@ -128,6 +130,68 @@ TEST(VisibilitySectors, MinimumReadingsOfASquareRoom) {
   SectorOptions bad;
   bad.cell_m = 0.0;
   test::expect_error([&] { compute_sectors(m, bad); }, {"cell_m"});
+}
+
+PolygonMap l_room() {
+  return make_polygon_map({{0, 0}, {7, 0}, {7, 3}, {3, 3}, {3, 6}, {0, 6}}, {});
+}
+
+TEST(SectorLocalization, RecoversThePoseAtEachSectorsCentre) {
+  // Noise-free 360-beam scans (1 deg), turned by 1 rad, from the middle of each sector: the
+  // label matches and the located vertices give the pose (seed 000 eqs. (2)-(9)).
+  const PolygonMap m = l_room();
+  const SectorMap s = compute_sectors(m);
+  SectorLocalizationOptions o;
+  o.label.median_window = 1;
+  for (std::size_t k = 0; k < s.sectors.size(); ++k) {
+    const Eigen::Vector2d p = s.sectors[k].representative;
+    const Pose2 truth{p.x(), p.y(), 1.0};
+    const SectorFix f = localize_in_sectors(s, polygon_scan(m, truth, 360, 20.0), o);
+    ASSERT_TRUE(f.found) << "sector " << k << " label " << f.scan_label;
+    EXPECT_LT(std::hypot(f.pose.x - truth.x, f.pose.y - truth.y), 0.02) << "sector " << k;
+    EXPECT_LT(std::abs(normalize_angle(f.pose.theta - truth.theta)), deg2rad(0.5)) << k;
+    EXPECT_GE(f.matched_m, 2);
+    EXPECT_LT(f.residual_m, 0.01);
+  }
+}
+
+TEST(SectorLocalization, MostRandomPosesOfTheLRoom) {
+  // 60 random poses at least 0.3 m from the walls, any heading, noise-free 360-beam scans.
+  // Measured over 200 such poses: 86.5 % within 2 cm and 0.5 deg, 11.5 % not found, 2 %
+  // wrong (a label that varies inside its sector; README, issue 6 in progress).
+  const PolygonMap m = l_room();
+  const SectorMap s = compute_sectors(m);
+  SectorLocalizationOptions o;
+  o.label.median_window = 1;
+  Rng rng(3);
+  int tried = 0, good = 0;
+  while (tried < 60) {
+    const Pose2 truth{rng.uniform(0.3, 6.7), rng.uniform(0.3, 5.7), rng.uniform(-3.1, 3.1)};
+    // Outside the L, or within 0.3 m of its inner walls.
+    if (truth.x > 2.7 && truth.y > 2.7) continue;
+    ++tried;
+    const SectorFix f = localize_in_sectors(s, polygon_scan(m, truth, 360, 20.0), o);
+    good += f.found && std::hypot(f.pose.x - truth.x, f.pose.y - truth.y) < 0.02 &&
+                    std::abs(normalize_angle(f.pose.theta - truth.theta)) < deg2rad(0.5)
+                ? 1
+                : 0;
+  }
+  std::cout << "[sectors] L room: " << good << "/60 within 2 cm and 0.5 deg\n";
+  EXPECT_GE(good, 45);
+}
+
+TEST(SectorLocalization, AScanOfAnotherPlaceIsNotFound) {
+  const SectorMap s = compute_sectors(l_room());
+  // A round room of radius 2 m: no corner, no sector.
+  RangeScan round;
+  round.max_range = 20.0;
+  for (int k = 0; k < 360; ++k) {
+    round.angles.push_back(deg2rad(k));
+    round.ranges.push_back(2.0);
+  }
+  const SectorFix f = localize_in_sectors(s, round);
+  EXPECT_FALSE(f.found);
+  EXPECT_EQ(f.candidates, 0);
 }
 
 }  // namespace

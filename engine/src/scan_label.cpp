@@ -78,10 +78,14 @@ ScanLabel construct_scan_label(const RangeScan& scan, const ScanLabelOptions& o)
   };
   std::vector<Extremum> ext;
   for (int i = 0; i < n; ++i) {
-    if (jump_beam[i]) continue;
-    const double a = at(i - 1), b = r[i], c = at(i + 1);
-    if (a < b && b >= c) ext.push_back({i, 'M'});
-    if (a > b && b <= c) ext.push_back({i, 'm'});
+    // A plateau (equal readings, common after the median filter) counts once, at its first
+    // beam, against the nearest different readings on either side.
+    if (jump_beam[i] || at(i - 1) == r[i]) continue;
+    const double a = at(i - 1), b = r[i];
+    double c = b;
+    for (int k = 1; k < n && c == b; ++k) c = at(i + k);
+    if (a < b && b > c) ext.push_back({i, 'M'});
+    if (a > b && b < c) ext.push_back({i, 'm'});
   }
   // Noise makes pairs of shallow extrema: drop the flattest neighbouring pair of one run
   // while it differs by less than the prominence.

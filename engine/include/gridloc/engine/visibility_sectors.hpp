@@ -97,3 +97,46 @@ SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& options = 
 RangeScan polygon_scan(const PolygonMap& map, const Pose2& pose, int beams, double max_range);
 
 }  // namespace gridloc
+
+namespace gridloc {
+
+struct SectorLocalizationOptions {
+  ScanLabelOptions label;
+  /// Labels are matched up to a turn and up to this many deleted neighbouring M m pairs (at
+  /// most one from the scan's label, the rest from the sector's): shallow extrema that a
+  /// noisy or coarse scan cannot resolve, or that move with the position inside a sector,
+  /// which seed 000's exact match would turn into "no sector".
+  int max_deleted_pairs = 3;
+  /// Beams on each side of an M reading fitted with a line to locate its vertex (seed 000
+  /// eqs. (6)-(9) use 4).
+  int line_points = 4;
+};
+
+/// What localize_in_sectors() found.
+struct SectorFix {
+  bool found = false;
+  int sector = -1;
+  Pose2 pose;
+  int deleted_pairs = 0;  ///< M m pairs the match left out of the sector's label
+  int matched_m = 0;      ///< M vertices the pose was fitted to
+  /// Median |measured - expected range| over the beams at `pose` (m): how well the map
+  /// explains the scan there.
+  double residual_m = 0.0;
+  /// Matches (sector and turn) that gave a pose: the winner has the smallest residual.
+  int candidates = 0;
+  /// Another candidate in another sector explains the scan within 2 cm of the winner's
+  /// residual: the scan cannot tell them apart (seed 000 §4.1).
+  bool ambiguous = false;
+  std::string scan_label;
+};
+
+/// Seed 000 §3: the scan's label, matched against every sector's label up to a turn (and up
+/// to max_deleted_pairs shallow M m pairs); for each match, the M characters name convex
+/// vertices, which the scan locates by fitting lines to the readings on both sides (eqs.
+/// (6)-(9)); the pose is the rigid fit of the located vertices to the map's (eqs. (2)-(5)
+/// for two, least squares for more). The candidate whose pose lies in its sector and best
+/// explains the scan wins. Throws gridloc::Error for a scan that fails validate().
+SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
+                              const SectorLocalizationOptions& options = {});
+
+}  // namespace gridloc
