@@ -16,7 +16,9 @@
 
 #include "cli_support.hpp"
 #include "gridloc/engine/evaluation.hpp"
+#include "gridloc/engine/visibility_sectors.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "test_support.hpp"
@@ -311,6 +313,33 @@ TEST_F(Cli, APolygonMapFeedsTheCorrelationEngine) {
                    "not closed");
 }
 
+TEST_F(Cli, LocalizeWithVisibilitySectors) {
+  // The L-shaped room as a polygon map and a noise-free 360-beam scan from (1.2, 1.6, 0.7).
+  const std::string poly =
+      dir.write("l.yaml", "boundary: [[0, 0], [7, 0], [7, 3], [3, 3], [3, 6], [0, 6], [0, 0]]\n");
+  const PolygonMap m = load_polygon_map(poly);
+  const Pose2 truth{1.2, 1.6, 0.7};
+  RangeScan s = polygon_scan(m, truth, 360, 20.0);
+  std::string csv;
+  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
+  }
+  const std::string scan = dir.write("l.csv", csv);
+  const CliRun r = run_cli(dir, "localize --map " + quote(poly) + " --scan " + quote(scan) +
+                                    " --max-range 20 --global --estimator sectors");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("estimator"), "sectors");
+  EXPECT_EQ(j.at("verdict"), "localized") << r.out;
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - truth.x,
+                       j.at("pose").at("y").get<double>() - truth.y),
+            0.02)
+      << r.out;
+  expect_cli_error(run_cli(dir, "localize --map " + quote(test::map_path("room_l")) + " --scan " +
+                                    quote(scan) + " --max-range 20 --global --estimator sectors"),
+                   "polygon map");
+}
+
 TEST_F(Cli, HallwayReportsSeed004sFigures) {
   const CliRun r = run_cli(dir, "hallway --seeds 5 --noise 0.02 --outliers scattered --json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -338,7 +367,7 @@ TEST_F(Cli, EvalComparesEstimatorsWithALaser) {
   expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators icp --quiet"),
                    "--laser");
   expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators pf --quiet"),
-                   "correlation, icp or correlation+icp");
+                   "correlation, icp, correlation+icp or sectors");
 }
 
 TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
@@ -401,7 +430,7 @@ TEST_F(Cli, RelationsOnTheIntelLog) {
       "not found");
   expect_cli_error(run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
                                     " --estimator particles"),
-                   "correlation, icp or correlation+icp");
+                   "correlation, icp, correlation+icp or sectors");
   if (!std::filesystem::exists(log)) GTEST_SKIP() << "../shared is absent: " << log;
   const CliRun r = run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
                                     " --time-offset 976052857.337311 --json");

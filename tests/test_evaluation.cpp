@@ -156,7 +156,11 @@ TEST(Evaluation, IcpNeedsTheLaserProtocol) {
   o.echo_filter = EchoFilterOptions{};
   test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); }, {"echo filter", "laser"});
   EXPECT_EQ(parse_estimator_kind("correlation+icp"), EstimatorKind::CorrelationIcp);
-  test::expect_error([] { parse_estimator_kind("pf"); }, {"correlation, icp or correlation+icp"});
+  test::expect_error([] { parse_estimator_kind("pf"); },
+                     {"correlation, icp, correlation+icp or sectors"});
+  o.echo_filter.reset();
+  o.configurations = {{LocalModel::Oriented, GlobalModel::Thinned, EstimatorKind::Sectors}};
+  test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); }, {"sectors", "not in"});
 }
 
 TEST(SampleFreePose, FootprintAndClearanceAreFree) {

@@ -110,6 +110,9 @@ TEST(RelationEval, Errors) {
   std::vector<RelationPair> pairs;
   test::expect_error([&] { evaluate_relations(log, pairs); }, {"no relation"});
   synthetic({{2.0, 1.5, 0.1}, {2.3, 1.7, 0.25}}, log, pairs);
+  RelationEvalOptions sectors;
+  sectors.matcher = EstimatorKind::Sectors;
+  test::expect_error([&] { evaluate_relations(log, pairs, sectors); }, {"sectors", "polygon map"});
   pairs[0].second = 7;
   test::expect_error([&] { evaluate_relations(log, pairs); }, {"scan 7", "log of 2"});
 }

@@ -14,16 +14,19 @@ std::string to_string(EstimatorKind kind) {
       return "icp";
     case EstimatorKind::CorrelationIcp:
       return "correlation+icp";
+    case EstimatorKind::Sectors:
+      return "sectors";
   }
   return "?";
 }
 
 EstimatorKind parse_estimator_kind(const std::string& name) {
-  for (EstimatorKind k :
-       {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp}) {
+  for (EstimatorKind k : {EstimatorKind::Correlation, EstimatorKind::Icp,
+                          EstimatorKind::CorrelationIcp, EstimatorKind::Sectors}) {
     if (to_string(k) == name) return k;
   }
-  throw Error("the estimator must be correlation, icp or correlation+icp, not '" + name + "'");
+  throw Error("the estimator must be correlation, icp, correlation+icp or sectors, not '" + name +
+              "'");
 }
 
 }  // namespace gridloc

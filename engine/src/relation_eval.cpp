@@ -31,6 +31,11 @@ Pose2 relative_pose(const Pose2& a, const Pose2& b) {
 
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& o, bool* converged) {
+  if (o.matcher == EstimatorKind::Sectors) {
+    throw Error(
+        "relations: the sectors estimator localizes on a polygon map, it does not match "
+        "two scans; use icp, correlation or correlation+icp");
+  }
   if (converged != nullptr) *converged = true;
   const auto ref_points = scan_returns(reference);
   const auto cur_points = scan_returns(current);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "gridloc/engine/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
@@ -114,18 +115,21 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   }
   double reach = 0.0;
   for (const auto& v : sectors.vertices) reach = std::max(reach, v.norm());
-  // How well the map explains the scan at a pose: the median range difference.
+  // How well the map explains the scan at a pose: the median range difference, each beam
+  // against the nearest beam of a dense noise-free scan (any beam layout works).
+  constexpr int kDense = 3600;
   const auto residual_at = [&](const Pose2& pose) {
-    const RangeScan expected = polygon_scan(sectors.map, pose, n, std::max(scan.max_range, 1.0));
+    const RangeScan expected =
+        polygon_scan(sectors.map, pose, kDense, std::max(scan.max_range, 1.0));
     std::vector<double> diff;
+    diff.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
-      // polygon_scan's beams start at 0 with an even step; a scan of another layout is
-      // compared where the angles agree.
-      if (std::abs(normalize_angle(expected.angles[i] - scan.angles[i])) > 1e-6) continue;
+      double a = std::fmod(scan.angles[i], 2.0 * std::numbers::pi);
+      if (a < 0.0) a += 2.0 * std::numbers::pi;
+      const int k = static_cast<int>(std::lround(a / (2.0 * std::numbers::pi) * kDense)) % kDense;
       diff.push_back(std::abs(std::min(scan.ranges[i], scan.max_range) -
-                              std::min(expected.ranges[i], scan.max_range)));
+                              std::min(expected.ranges[k], scan.max_range)));
     }
-    if (diff.empty()) return 0.0;
     const auto mid = diff.begin() + static_cast<std::ptrdiff_t>(diff.size() / 2);
     std::nth_element(diff.begin(), mid, diff.end());
     return *mid;

@@ -7,7 +7,9 @@
 #include "commands.hpp"
 #include "gridloc/engine/correlation_estimator.hpp"
 #include "gridloc/engine/icp_estimator.hpp"
+#include "gridloc/engine/sector_estimator.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/polygon_map.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
 
@@ -39,7 +41,16 @@ void run(const LocalizeArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const CorrelationEstimator> correlation = std::move(l.estimator);
   std::unique_ptr<Estimator> chosen;
-  if (kind != EstimatorKind::Correlation) {
+  if (kind == EstimatorKind::Sectors) {
+    // Global: the window (--prior or --global) only sets on_window_edge.
+    if (!is_polygon_map_file(a.inputs.map)) {
+      throw Error(
+          "--estimator sectors needs a polygon map (--map with a 'boundary'; README, "
+          "Polygon maps), not " +
+          a.inputs.map);
+    }
+    chosen = std::make_unique<SectorEstimator>(load_polygon_map(a.inputs.map));
+  } else if (kind != EstimatorKind::Correlation) {
     auto icp = std::make_shared<const IcpEstimator>(correlation->map());
     if (kind == EstimatorKind::Icp) {
       chosen = std::make_unique<IcpEstimator>(*icp);
@@ -91,7 +102,8 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--estimator", a->estimator,
                   "correlation (seed 001's search) | icp (seed 004's robust ICP against the "
                   "map's contour, from --prior; --scan only) | correlation+icp (the search, "
-                  "then ICP from its winner; --scan only)")
+                  "then ICP from its winner; --scan only) | sectors (seed 000's visibility "
+                  "sectors: global, a polygon --map and a 360 degree --scan)")
       ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

@@ -27,9 +27,10 @@ enum class EstimatorKind {
   Correlation,     ///< the correlation search (CorrelationEstimator, seed 001)
   Icp,             ///< robust ICP from the prior (IcpEstimator, match_scans; seed 004)
   CorrelationIcp,  ///< the correlation search, then ICP from its winner
+  Sectors,         ///< visibility sectors on a polygon map (SectorEstimator; seed 000)
 };
 
-/// "correlation", "icp" or "correlation+icp".
+/// "correlation", "icp", "correlation+icp" or "sectors".
 std::string to_string(EstimatorKind kind);
 /// The kind to_string() names; gridloc::Error listing the choices otherwise.
 EstimatorKind parse_estimator_kind(const std::string& name);
