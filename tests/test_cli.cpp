@@ -260,17 +260,22 @@ TEST_F(Cli, EvalJson) {
           {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
 }
 
+/// A scan as the `angle_rad,range_m` lines `localize --scan` reads.
+std::string write_scan_csv(test::TempDir& dir, const std::string& name, const RangeScan& s) {
+  std::string csv;
+  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
+  }
+  return dir.write(name, csv);
+}
+
 TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
   // A 360-beam scan simulated on the small apartment, written as angle,range lines.
   const std::string map_file = test::map_path("apartment_small");
   const OccupancyMap m = load_ros_map(map_file);
   const Pose2 truth{6.5, 4.5, -2.0};
-  const RangeScan s = simulate_scan(m, truth, 360, 8.0, 0.01, 3);
-  std::string csv;
-  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
-    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
-  }
-  const std::string scan = dir.write("apartment.csv", csv);
+  const std::string scan =
+      write_scan_csv(dir, "apartment.csv", simulate_scan(m, truth, 360, 8.0, 0.01, 3));
   for (const std::string estimator : {"icp", "correlation+icp"}) {
     const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
                                       " --prior 6.7,4.3,-1.8 --estimator " + estimator);
@@ -319,12 +324,7 @@ TEST_F(Cli, LocalizeWithVisibilitySectors) {
       dir.write("l.yaml", "boundary: [[0, 0], [7, 0], [7, 3], [3, 3], [3, 6], [0, 6], [0, 0]]\n");
   const PolygonMap m = load_polygon_map(poly);
   const Pose2 truth{1.2, 1.6, 0.7};
-  RangeScan s = polygon_scan(m, truth, 360, 20.0);
-  std::string csv;
-  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
-    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
-  }
-  const std::string scan = dir.write("l.csv", csv);
+  const std::string scan = write_scan_csv(dir, "l.csv", polygon_scan(m, truth, 360, 20.0));
   const CliRun r = run_cli(dir, "localize --map " + quote(poly) + " --scan " + quote(scan) +
                                     " --max-range 20 --global --estimator sectors");
   ASSERT_EQ(r.status, 0) << r.err;
