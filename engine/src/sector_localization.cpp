@@ -147,8 +147,15 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   const int scan_side = std::min(1, o.max_deleted_pairs);
   const int sector_side = o.max_deleted_pairs - scan_side;
   const std::vector<Variant> scan_variants = variants(l.label, scan_side);
+  // Only M m pairs are ever deleted: a sector whose label has other D and c counts cannot
+  // match, and is skipped before its variants are built.
+  const auto count = [](const std::string& x, char c) { return std::count(x.begin(), x.end(), c); };
   for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
     const Sector& sec = sectors.sectors[s];
+    if (count(sec.label, 'D') != count(l.label, 'D') ||
+        count(sec.label, 'c') != count(l.label, 'c')) {
+      continue;
+    }
     for (const Variant& sv : variants(sec.label, sector_side)) {
       for (const Variant& qv : scan_variants) {
         const int len = static_cast<int>(qv.label.size());

@@ -265,23 +265,24 @@ SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& o) {
       }
     }
   }
+  // The largest face of each merged group speaks for it (representative, visible set,
+  // features); the cells add up.
+  std::vector<int> largest(static_cast<std::size_t>(nf), -1),
+      total(static_cast<std::size_t>(nf), 0);
+  for (int id = 0; id < nf; ++id) {
+    const int root = find(id);
+    if (largest[root] < 0 || faces[id].cells > faces[largest[root]].cells) largest[root] = id;
+    total[root] += faces[id].cells;
+  }
   std::vector<int> sector_of_face(static_cast<std::size_t>(nf), -1);
   for (int id = 0; id < nf; ++id) {
     const int root = find(id);
     if (sector_of_face[root] < 0) {
       sector_of_face[root] = static_cast<int>(out.sectors.size());
-      out.sectors.push_back(faces[root]);
-      out.sectors.back().cells = 0;
+      out.sectors.push_back(faces[largest[root]]);
+      out.sectors.back().cells = total[root];
     }
     sector_of_face[id] = sector_of_face[root];
-    Sector& s = out.sectors[sector_of_face[id]];
-    // The largest face speaks for the merged sector.
-    if (faces[id].cells > faces[root].cells && faces[id].cells > s.cells) {
-      const int cells_so_far = s.cells;
-      s = faces[id];
-      s.cells = cells_so_far;
-    }
-    s.cells += faces[id].cells;
   }
   out.sector_of.assign(cells, -1);
   for (std::size_t c = 0; c < cells; ++c) {
