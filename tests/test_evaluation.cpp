@@ -157,10 +157,11 @@ TEST(Evaluation, IcpNeedsTheLaserProtocol) {
   test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); }, {"echo filter", "laser"});
   EXPECT_EQ(parse_estimator_kind("correlation+icp"), EstimatorKind::CorrelationIcp);
   test::expect_error([] { parse_estimator_kind("pf"); },
-                     {"correlation, icp, correlation+icp or sectors"});
+                     {"correlation, icp, correlation+icp, sectors or sectors+correlation"});
   o.echo_filter.reset();
   o.configurations = {{LocalModel::Oriented, GlobalModel::Thinned, EstimatorKind::Sectors}};
-  test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); }, {"sectors", "not in"});
+  test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); },
+                     {"sectors", "polygon maps", "run_sector_evaluation"});
 }
 
 TEST(SampleFreePose, FootprintAndClearanceAreFree) {

@@ -16,17 +16,22 @@ std::string to_string(EstimatorKind kind) {
       return "correlation+icp";
     case EstimatorKind::Sectors:
       return "sectors";
+    case EstimatorKind::SectorsCorrelation:
+      return "sectors+correlation";
   }
   return "?";
 }
 
 EstimatorKind parse_estimator_kind(const std::string& name) {
-  for (EstimatorKind k : {EstimatorKind::Correlation, EstimatorKind::Icp,
-                          EstimatorKind::CorrelationIcp, EstimatorKind::Sectors}) {
+  for (EstimatorKind k :
+       {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp,
+        EstimatorKind::Sectors, EstimatorKind::SectorsCorrelation}) {
     if (to_string(k) == name) return k;
   }
-  throw Error("the estimator must be correlation, icp, correlation+icp or sectors, not '" + name +
-              "'");
+  throw Error(
+      "the estimator must be correlation, icp, correlation+icp, sectors or sectors+correlation, "
+      "not '" +
+      name + "'");
 }
 
 }  // namespace gridloc

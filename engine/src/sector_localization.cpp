@@ -4,12 +4,17 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "gridloc/engine/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
 namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 bool is_pair(char a, char b) {
   return (a == 'M' && b == 'm') || (a == 'm' && b == 'M');
@@ -96,13 +101,100 @@ Pose2 rigid_fit(const std::vector<Eigen::Vector2d>& local,
   return {t.x(), t.y(), theta};
 }
 
+/// The positions of a label's D and c characters: the jumps of a scan, which a partial view
+/// keeps while the extrema between them come and go.
+std::vector<int> skeleton(const std::string& label) {
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(label.size()); ++i) {
+    if (label[i] == 'D' || label[i] == 'c') out.push_back(i);
+  }
+  return out;
+}
+
+/// The skeleton itself and every skeleton with up to `pairs` neighbouring D c (or c D) pairs
+/// left out (cyclic, like the label).
+std::vector<std::vector<int>> skeleton_variants(const std::string& label,
+                                                const std::vector<int>& skeleton, int pairs) {
+  std::vector<std::vector<int>> out{skeleton};
+  std::size_t from = 0;
+  for (int round = 0; round < pairs; ++round) {
+    const std::size_t to = out.size();
+    for (std::size_t v = from; v < to; ++v) {
+      const int n = static_cast<int>(out[v].size());
+      for (int i = 0; i < n && n >= 4; ++i) {
+        const int j = (i + 1) % n;
+        if (label[out[v][i]] == label[out[v][j]]) continue;  // DD or cc: not a pair
+        std::vector<int> w;
+        for (int k = 0; k < n; ++k) {
+          if (k != i && k != j) w.push_back(out[v][k]);
+        }
+        if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
+      }
+    }
+    from = to;
+  }
+  return out;
+}
+
+/// The positions of the M characters strictly between positions `from` and `to` of a cyclic
+/// label (from == to: the whole label but `from`).
+std::vector<int> maxima_between(const std::string& label, int from, int to) {
+  std::vector<int> out;
+  const int n = static_cast<int>(label.size());
+  for (int i = (from + 1) % n; i != to; i = (i + 1) % n) {
+    if (label[i] == 'M') out.push_back(i);
+  }
+  return out;
+}
+
+/// Gauss-Newton on the distances from the scan's points (robot frame) to their nearest map
+/// edge, with a shrinking gate: a pose from a few located vertices, made exact by every
+/// reading on the edges it explains.
+Pose2 polish(const std::vector<Eigen::Vector2d>& points,
+             const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges, Pose2 pose) {
+  for (const double gate : {0.3, 0.15, 0.08, 0.04, 0.04}) {
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    const Eigen::Rotation2Dd R(pose.theta);
+    const Eigen::Vector2d t(pose.x, pose.y);
+    int used = 0;
+    for (const auto& p : points) {
+      const Eigen::Vector2d rp = R * p, w = rp + t;
+      double best = gate;
+      Eigen::Vector2d normal;
+      double r = 0.0;
+      for (const auto& [a, b] : edges) {
+        const Eigen::Vector2d e = b - a;
+        const double u = (w - a).dot(e) / e.squaredNorm();
+        if (u < 0.0 || u > 1.0) continue;
+        const Eigen::Vector2d nrm = Eigen::Vector2d(-e.y(), e.x()).normalized();
+        const double d = nrm.dot(w - a);
+        if (std::abs(d) < best) best = std::abs(d), normal = nrm, r = d;
+      }
+      if (best >= gate) continue;
+      const Eigen::Vector3d J(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rp.y(), rp.x())));
+      H += J * J.transpose();
+      g += J * r;
+      ++used;
+    }
+    if (used < 3) break;
+    const Eigen::Vector3d step = H.ldlt().solve(-g);
+    if (!step.allFinite()) break;
+    pose = {pose.x + step.x(), pose.y + step.y(), normalize_angle(pose.theta + step.z())};
+  }
+  return pose;
+}
+
 }  // namespace
 
 SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
                               const SectorLocalizationOptions& o) {
   validate(scan);
-  if (o.max_deleted_pairs < 0 || o.line_points < 2) {
-    throw Error("SectorLocalizationOptions: max_deleted_pairs must be >= 0, line_points >= 2");
+  if (o.max_deleted_pairs < 0 || o.line_points < 2 || !(o.ambiguity_residual_m >= 0.0) ||
+      !(o.residual_cap_m > 0.0)) {
+    throw Error(
+        "SectorLocalizationOptions: max_deleted_pairs must be >= 0, line_points >= 2, "
+        "ambiguity_residual_m >= 0, residual_cap_m > 0");
   }
   const ScanLabel l = construct_scan_label(scan, o.label);
   SectorFix fix;
@@ -113,26 +205,68 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     const double r = std::min(scan.ranges[i], scan.max_range);
     pts[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
   }
-  double reach = 0.0;
-  for (const auto& v : sectors.vertices) reach = std::max(reach, v.norm());
-  // How well the map explains the scan at a pose: the median range difference, each beam
-  // against the nearest beam of a dense noise-free scan (any beam layout works).
-  constexpr int kDense = 3600;
-  const auto residual_at = [&](const Pose2& pose) {
-    const RangeScan expected =
-        polygon_scan(sectors.map, pose, kDense, std::max(scan.max_range, 1.0));
-    std::vector<double> diff;
-    diff.reserve(static_cast<std::size_t>(n));
+  const auto edges = polygon_edges(sectors.map);
+  // How well the map explains the scan at a pose: each beam's range against the range cast
+  // along it on the polygons, the difference capped, averaged.
+  const auto range_residual = [&](const Pose2& pose) {
+    const Eigen::Vector2d origin(pose.x, pose.y);
+    double sum = 0.0;
     for (int i = 0; i < n; ++i) {
-      double a = std::fmod(scan.angles[i], 2.0 * std::numbers::pi);
-      if (a < 0.0) a += 2.0 * std::numbers::pi;
-      const int k = static_cast<int>(std::lround(a / (2.0 * std::numbers::pi) * kDense)) % kDense;
-      diff.push_back(std::abs(std::min(scan.ranges[i], scan.max_range) -
-                              std::min(expected.ranges[k], scan.max_range)));
+      const double a = pose.theta + scan.angles[i];
+      const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+      double expected = scan.max_range;
+      for (const auto& [p, q] : edges) {
+        const Eigen::Vector2d e = q - p, w = p - origin;
+        const double den = cross2(dir, e);
+        if (std::abs(den) < 1e-12) continue;  // parallel: not seen
+        const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
+        if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
+      }
+      sum +=
+          std::min(o.residual_cap_m, std::abs(std::min(scan.ranges[i], scan.max_range) - expected));
     }
-    const auto mid = diff.begin() + static_cast<std::ptrdiff_t>(diff.size() / 2);
-    std::nth_element(diff.begin(), mid, diff.end());
-    return *mid;
+    return sum / n;
+  };
+  // Located vertices that a rigid motion cannot put near their map vertices are wrong
+  // correspondences (a corner fitted across two surfaces) or a wrong match: cheap to rule out
+  // before the residual. A D reading lies within a beam step of its corner, so the allowance
+  // grows with range.
+  double beam_step = 2.0 * std::numbers::pi / n;
+  for (int i = 1; i < n; ++i)
+    beam_step = std::max(beam_step, std::abs(scan.angles[i] - scan.angles[i - 1]));
+  beam_step = std::min(beam_step, 0.2);
+  // The rigid fit with correspondences it cannot place left out, worst first; nullopt when
+  // fewer than two remain.
+  const auto trimmed_fit = [&](std::vector<Eigen::Vector2d> local,
+                               std::vector<Eigen::Vector2d> world) -> std::optional<Pose2> {
+    while (local.size() >= 2) {
+      const Pose2 pose = rigid_fit(local, world);
+      const Eigen::Rotation2Dd R(pose.theta);
+      const Eigen::Vector2d t(pose.x, pose.y);
+      std::size_t worst = 0;
+      double worst_excess = 0.0;
+      for (std::size_t k = 0; k < local.size(); ++k) {
+        const double excess =
+            (R * local[k] + t - world[k]).norm() - (0.3 + 1.5 * beam_step * local[k].norm());
+        if (excess > worst_excess) worst_excess = excess, worst = k;
+      }
+      if (worst_excess <= 0.0) return pose;
+      local.erase(local.begin() + static_cast<std::ptrdiff_t>(worst));
+      world.erase(world.begin() + static_cast<std::ptrdiff_t>(worst));
+    }
+    return std::nullopt;
+  };
+  // Sectors with alike labels give the same pose from the same vertices, many times over.
+  std::vector<std::pair<Pose2, double>> scored;
+  const auto residual_at = [&](const Pose2& pose) {
+    for (const auto& [p, r] : scored) {
+      if (std::abs(p.x - pose.x) < 1e-9 && std::abs(p.y - pose.y) < 1e-9 &&
+          std::abs(p.theta - pose.theta) < 1e-9) {
+        return r;
+      }
+    }
+    scored.emplace_back(pose, range_residual(pose));
+    return scored.back().second;
   };
   struct Candidate {
     int sector;
@@ -178,7 +312,9 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
             world.push_back(sectors.vertices[feature]);
           }
           if (local.size() < 2) continue;
-          const Pose2 pose = rigid_fit(local, world);
+          const std::optional<Pose2> fitted = trimmed_fit(local, world);
+          if (!fitted) continue;
+          const Pose2 pose = *fitted;
           if (sectors.sector_at({pose.x, pose.y}) < 0) continue;  // off the free space
           found.push_back({static_cast<int>(s), pose, deleted, static_cast<int>(local.size()),
                            residual_at(pose)});
@@ -186,23 +322,121 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
       }
     }
   }
+  // Partial views (seed 000's assumption (ii) failing: too few beams on a far, short or
+  // grazing edge) add or drop extrema between the jumps but keep the jumps. A sector whose D c
+  // skeleton is the scan's, turned, gives correspondences from its D vertices (the occluding
+  // corners, read at the near side of each jump: within a beam step) and from the M vertices
+  // of the runs between jumps that hold as many M as the scan's; polish() then fits the pose
+  // to every reading.
+  // A jump can also come or go: a wall seen at a grazing angle by coarse beams jumps by more
+  // than epsilon_T between neighbours, a narrow gap falls between two beams. Up to
+  // max_deleted_jumps neighbouring D c pairs of either skeleton are left out.
+  const std::vector<int> scan_skeleton = skeleton(l.label);
+  if (o.skeleton_matching && scan_skeleton.size() >= 2) {
+    std::vector<Eigen::Vector2d> returns;
+    for (int i = 0; i < n; ++i) {
+      if (scan.ranges[i] < scan.max_range) returns.push_back(pts[i]);
+    }
+    // Many sectors give the same correspondences, hence the same rough pose.
+    std::vector<std::pair<Pose2, Pose2>> polish_cache;
+    const auto polished = [&](const Pose2& rough) {
+      for (const auto& [r, p] : polish_cache) {
+        if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
+      }
+      polish_cache.emplace_back(rough, polish(returns, edges, rough));
+      return polish_cache.back().second;
+    };
+    const auto jump_variants = skeleton_variants(l.label, scan_skeleton, o.max_deleted_jumps);
+    // The correspondences of the scan's skeleton qa turned by k onto the sector's sa.
+    const auto try_match = [&](std::size_t s, const std::vector<int>& qa,
+                               const std::vector<int>& sa, int deleted) {
+      const Sector& sec = sectors.sectors[s];
+      const int ks = static_cast<int>(qa.size());
+      for (int k = 0; k < ks; ++k) {
+        bool equal = true;
+        for (int j = 0; j < ks && equal; ++j) equal = l.label[qa[j]] == sec.label[sa[(j + k) % ks]];
+        if (!equal) continue;
+        std::vector<Eigen::Vector2d> local, world;
+        for (int j = 0; j < ks; ++j) {
+          const int a = qa[j], b = sa[(j + k) % ks];
+          if (l.label[a] == 'D' && sec.features[b] >= 0) {
+            local.push_back(pts[l.beam[a]]);
+            world.push_back(sectors.vertices[sec.features[b]]);
+          }
+          const auto ms = maxima_between(l.label, a, qa[(j + 1) % ks]);
+          const auto mv = maxima_between(sec.label, b, sa[(j + k + 1) % ks]);
+          if (ms.size() != mv.size()) continue;
+          for (std::size_t q = 0; q < ms.size(); ++q) {
+            if (sec.features[mv[q]] < 0) continue;
+            local.push_back(locate_vertex(pts, l.beam[ms[q]], o.line_points));
+            world.push_back(sectors.vertices[sec.features[mv[q]]]);
+          }
+        }
+        if (local.size() < 2) continue;
+        const std::optional<Pose2> rough = trimmed_fit(local, world);
+        if (!rough) continue;
+        const Pose2 pose = polished(*rough);
+        if (sectors.sector_at({pose.x, pose.y}) < 0) continue;
+        // Behind every label match: ties go to the seed's own matching.
+        found.push_back({static_cast<int>(s), pose, o.max_deleted_pairs + 1 + deleted,
+                         static_cast<int>(local.size()), residual_at(pose)});
+      }
+    };
+    for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
+      const std::string& label = sectors.sectors[s].label;
+      const std::vector<int> sk = skeleton(label);
+      const std::size_t ks = scan_skeleton.size();
+      if (sk.size() == ks) try_match(s, scan_skeleton, sk, 0);
+      // One side's pairs left out, never both (that would match too much).
+      if (sk.size() < ks) {
+        for (const auto& qa : jump_variants) {
+          if (qa.size() == sk.size()) try_match(s, qa, sk, static_cast<int>(ks - qa.size()) / 2);
+        }
+      } else if (sk.size() > ks) {
+        for (const auto& sa : skeleton_variants(label, sk, o.max_deleted_jumps)) {
+          if (sa.size() == ks)
+            try_match(s, scan_skeleton, sa, static_cast<int>(sk.size() - ks) / 2);
+        }
+      }
+    }
+  }
   fix.candidates = static_cast<int>(found.size());
   if (found.empty()) return fix;
+  // Sectors whose labels match alike often give the same pose from the same vertices: among
+  // equal residuals, the candidate whose pose lies in the sector it matched names the sector.
+  const auto home = [&](const Candidate& c) {
+    return sectors.sector_at({c.pose.x, c.pose.y}) == c.sector ? 0 : 1;
+  };
   const auto best =
-      std::min_element(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
-        return a.residual != b.residual ? a.residual < b.residual : a.deleted < b.deleted;
+      std::min_element(found.begin(), found.end(), [&](const Candidate& a, const Candidate& b) {
+        if (a.residual != b.residual) return a.residual < b.residual;
+        if (home(a) != home(b)) return home(a) < home(b);
+        return a.deleted < b.deleted;
       });
   fix.found = true;
   fix.sector = best->sector;
+  // The sector named is one whose label matched with (nearly) this pose and that holds it,
+  // when there is one: a neighbour's alike label may explain the scan a hair better.
+  if (home(*best) != 0) {
+    for (const auto& c : found) {
+      if (home(c) == 0 && std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) < 0.02 &&
+          std::abs(normalize_angle(c.pose.theta - best->pose.theta)) < 0.01) {
+        fix.sector = c.sector;
+        break;
+      }
+    }
+  }
   fix.pose = best->pose;
   fix.deleted_pairs = best->deleted;
   fix.matched_m = best->matched;
   fix.residual_m = best->residual;
+  // A distinct pose that explains the scan about as well: in another sector with the same
+  // label (seed 000 §4.1), or in the same sector of a symmetric room (a rectangle's twin pose
+  // turned by 180 deg).
   for (const auto& c : found) {
-    if (c.sector != best->sector && c.residual <= best->residual + 0.02 &&
-        std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) > 0.3) {
-      fix.ambiguous = true;
-    }
+    const bool distinct = std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) > 0.3 ||
+                          std::abs(normalize_angle(c.pose.theta - best->pose.theta)) > 0.26;
+    if (distinct && c.residual <= best->residual + o.ambiguity_residual_m) fix.ambiguous = true;
   }
   return fix;
 }

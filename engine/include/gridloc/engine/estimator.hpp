@@ -28,9 +28,11 @@ enum class EstimatorKind {
   Icp,             ///< robust ICP from the prior (IcpEstimator, match_scans; seed 004)
   CorrelationIcp,  ///< the correlation search, then ICP from its winner
   Sectors,         ///< visibility sectors on a polygon map (SectorEstimator; seed 000)
+  /// the sector fix refined by the correlation's local search (SectorCorrelationEstimator)
+  SectorsCorrelation,
 };
 
-/// "correlation", "icp", "correlation+icp" or "sectors".
+/// "correlation", "icp", "correlation+icp", "sectors" or "sectors+correlation".
 std::string to_string(EstimatorKind kind);
 /// The kind to_string() names; gridloc::Error listing the choices otherwise.
 EstimatorKind parse_estimator_kind(const std::string& name);

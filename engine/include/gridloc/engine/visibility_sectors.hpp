@@ -110,6 +110,19 @@ struct SectorLocalizationOptions {
   /// Beams on each side of an M reading fitted with a line to locate its vertex (seed 000
   /// eqs. (6)-(9) use 4).
   int line_points = 4;
+  /// A candidate pose more than 0.3 m or 15 deg from the winner whose residual is within this
+  /// (m) of the winner's makes the fix ambiguous.
+  double ambiguity_residual_m = 0.02;
+  /// A beam's range difference counts at most this much (m) in SectorFix::residual_m: a few
+  /// beams on a notch tell a room from its turned twin, where a median would ignore them,
+  /// and clutter the map lacks costs a bounded amount.
+  double residual_cap_m = 0.3;
+  /// Also match the scan's D c skeleton (its jumps) against the sectors', the extrema between
+  /// jumps free to differ: partial views of far or short edges (seed 000 §4.2) still localize.
+  bool skeleton_matching = true;
+  /// Neighbouring D c pairs the skeleton match may leave out of one side: a grazing wall's
+  /// false jump, a narrow gap between two beams.
+  int max_deleted_jumps = 1;
 };
 
 /// What localize_in_sectors() found.
@@ -119,13 +132,14 @@ struct SectorFix {
   Pose2 pose;
   int deleted_pairs = 0;  ///< M m pairs the match left out of the sector's label
   int matched_m = 0;      ///< M vertices the pose was fitted to
-  /// Median |measured - expected range| over the beams at `pose` (m): how well the map
-  /// explains the scan there.
+  /// Mean over the beams of |measured - expected range| at `pose`, each capped at
+  /// SectorLocalizationOptions::residual_cap_m (m): how well the map explains the scan there.
   double residual_m = 0.0;
   /// Matches (sector and turn) that gave a pose: the winner has the smallest residual.
   int candidates = 0;
-  /// Another candidate in another sector explains the scan within 2 cm of the winner's
-  /// residual: the scan cannot tell them apart (seed 000 §4.1).
+  /// A candidate pose more than 0.3 m or 15 deg away explains the scan within
+  /// ambiguity_residual_m of the winner's residual: the scan cannot tell them apart (seed 000
+  /// §4.1: another sector with the same label; or a symmetric room).
   bool ambiguous = false;
   std::string scan_label;
 };
