@@ -203,5 +203,29 @@ TEST_F(HeatmapCli, Errors) {
   expect_cli_error(run_cli(dir, base + " --prior 1.9,1.4,0.6 --out " + quote(file)), {"--out"});
 }
 
+TEST_F(HeatmapCli, SectorsImage) {
+  // `gridloc sectors --out` (seed 000's sectors) draws with the same plotting code.
+  const std::string polygons = test::maps_dir() + "/polygons/room_l.yaml";
+  const std::string out = dir.file("sectors out/l");  // a space, two levels created
+  const CliRun r = run_cli(dir, "sectors --polygons " + quote(polygons) + " --out " + quote(out));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("wrote " + out + "/sectors.png"), std::string::npos) << r.out;
+  const std::string png = out + "/sectors.png";
+  ASSERT_GT(read_file(png).size(), 0u) << png;
+  const cv::Mat img = cv::imread(png, cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty()) << png << " does not decode";
+  EXPECT_GT(img.cols, 200);
+  EXPECT_GT(img.rows, 200);
+  EXPECT_LE(img.cols, 1700);
+  // A colour per sector, greys, text: far more than a blank image.
+  EXPECT_GE(colours(img), 100u);
+  // sectors.json is what --json prints.
+  const CliRun j = run_cli(dir, "sectors --polygons " + quote(polygons) + " --json");
+  ASSERT_EQ(j.status, 0) << j.err;
+  EXPECT_EQ(nlohmann::json::parse(read_file(out + "/sectors.json")), nlohmann::json::parse(j.out));
+  EXPECT_GT(nlohmann::json::parse(j.out).at("sector_count").get<int>(), 1);
+}
+
 }  // namespace
 }  // namespace gridloc

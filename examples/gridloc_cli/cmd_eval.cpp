@@ -1,23 +1,33 @@
 // gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}, or over the
-// estimators (--estimators), with the sonar ring or a simulated laser (--laser).
+// estimators (--estimators), with the sonar ring or a simulated laser (--laser); on polygon
+// maps, or with a sector estimator, the sector protocol (eval_sectors.cpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
+#include "eval_sectors.hpp"
 #include "gridloc/engine/evaluation.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
 namespace {
 
+/// The bundled polygon maps: the sector protocol's default.
+constexpr const char* kPolygonMaps =
+    "polygons/room_rect,polygons/room_l,polygons/room_furnished,polygons/office";
+
 struct EvalArgs {
   std::string maps, ring, noise = "realistic";
+  bool maps_given = false;  ///< --maps was on the command line
   SearchArgs search;
   OctomapArgs octomap;
   int trials = 100;
@@ -67,7 +77,72 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
+/// A bare name ("room_l", "polygons/office") means a bundled map.
+std::string map_file(const std::string& name) {
+  return name.find(".yaml") == std::string::npos && !is_octomap_path(name)
+             ? data_dir() + "/" + name + ".yaml"
+             : name;
+}
+
+bool is_sector_kind(EstimatorKind k) {
+  return k == EstimatorKind::Sectors || k == EstimatorKind::SectorsCorrelation;
+}
+
+/// The sector protocol: polygon maps, 360-degree scans, no prior.
+void run_sectors(const EvalArgs& a, const std::vector<std::string>& files) {
+  if (a.noisy || a.echo_filter) {
+    throw Error(
+        "--noisy and --echo-filter belong to seed 001's sonar protocol, not to the sector "
+        "protocol (polygon maps, 360 degree scans)");
+  }
+  SectorEvalArgs s;
+  s.maps = files;
+  s.json = a.json;
+  s.quiet = a.quiet;
+  s.trials_out = a.trials_out;
+  SectorEvalOptions& o = s.options;
+  o.trials = a.trials;
+  o.seed = a.seed;
+  o.beams = a.laser.beams;
+  o.max_range = a.laser.max_range;
+  o.sigma_m = a.laser.sigma_m;
+  a.search.apply(o.correlation);
+  if (!a.estimators.empty()) {
+    o.estimators.clear();
+    for (const auto& name : split(a.estimators)) o.estimators.push_back(parse_estimator_kind(name));
+  }
+  run_sector_eval(s);
+}
+
 void run(const EvalArgs& a) {
+  // Polygon maps or a sector estimator: the sector protocol.
+  bool sectors = false;
+  for (const auto& name : split(a.estimators))
+    sectors |= is_sector_kind(parse_estimator_kind(name));
+  std::vector<std::string> files;
+  for (const auto& name : split(sectors && !a.maps_given ? kPolygonMaps : a.maps)) {
+    files.push_back(map_file(name));
+  }
+  if (files.empty()) throw Error("--maps names no map");
+  for (const auto& f : files) {
+    if (!std::filesystem::exists(f)) throw Error("--maps: " + f + ": no such file");
+  }
+  const auto polygon = [](const std::string& f) {
+    return !is_octomap_path(f) && is_polygon_map_file(f);
+  };
+  const std::size_t polygons =
+      static_cast<std::size_t>(std::count_if(files.begin(), files.end(), polygon));
+  if (polygons > 0 && polygons < files.size()) {
+    throw Error(
+        "--maps mixes polygon maps with grid maps: the sector protocol needs polygon maps only");
+  }
+  if (sectors && polygons == 0) {
+    throw Error(
+        "the sectors estimators need polygon maps (--maps polygons/office or a polygon YAML; "
+        "README, Polygon maps)");
+  }
+  if (polygons > 0) return run_sectors(a, files);
+
   EvalOptions o;
   o.trials = a.trials;
   o.seed = a.seed;
@@ -90,16 +165,7 @@ void run(const EvalArgs& a) {
   }
   if (a.echo_filter) o.echo_filter = EchoFilterOptions{};
   std::vector<EvalMap> maps;
-  for (const auto& path : split(a.maps)) {
-    // A bare name means a bundled map.
-    const std::string file = path.find('/') == std::string::npos &&
-                                     path.find(".yaml") == std::string::npos &&
-                                     !is_octomap_path(path)
-                                 ? data_dir() + "/" + path + ".yaml"
-                                 : path;
-    maps.push_back({file, load_map(file, a.octomap.slice)});
-  }
-  if (maps.empty()) throw Error("--maps names no map");
+  for (const auto& file : files) maps.push_back({file, load_map(file, a.octomap.slice)});
   const SonarRing ring = load_sonar_ring(a.ring);
 
   const EvalReport report = run_evaluation(maps, ring, o, [&](int done, int total) {
@@ -128,6 +194,7 @@ void run(const EvalArgs& a) {
            {"mean_position_error_m", c.mean_position_error_m},
            {"mean_heading_error_deg", c.mean_heading_error_deg},
            {"median_ms", c.median_ms},
+           {"sector_identification_rate", nullptr},  // the sector protocol's
            {"auroc", number_or_null(c.auroc)},
            {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)}});
     }
@@ -198,8 +265,11 @@ void add_eval(CLI::App& app) {
   a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
   cmd->add_option("--maps", a->maps,
-                  "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths")
-      ->capture_default_str();
+                  "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths; "
+                  "polygon maps run the sector protocol (default there: " +
+                      std::string(kPolygonMaps) + ")")
+      ->capture_default_str()
+      ->each([a](const std::string&) { a->maps_given = true; });
   a->octomap.add_to(cmd);
   cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
   cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
@@ -214,10 +284,12 @@ void add_eval(CLI::App& app) {
   cmd->add_flag("--echo-filter", a->echo_filter,
                 "fire the ring 3 times per trial and reject sonars whose echoes disagree "
                 "(EERUF-like; a rejected sonar adds nothing to the local grid)");
-  cmd->add_option("--estimators", a->estimators,
+  cmd->add_option("--estimators,--estimator", a->estimators,
                   "compare these estimators on the same trials: comma-separated correlation, "
-                  "icp, correlation+icp (icp needs --laser); default: the correlation over "
-                  "{turned, oriented} x {raw, thinned}");
+                  "icp, correlation+icp (icp needs --laser), sectors, sectors+correlation (the "
+                  "sector protocol: polygon maps, 360 degree scans, no prior); default: the "
+                  "correlation over {turned, oriented} x {raw, thinned}, or sectors and "
+                  "correlation on polygon maps");
   cmd->add_flag("--laser", a->laser.enabled,
                 "observe with a simulated 360 degree laser instead of the sonar ring");
   cmd->add_option("--laser-beams", a->laser.beams, "laser beams per scan")->capture_default_str();

@@ -8,6 +8,7 @@
 #include "gridloc/engine/correlation_estimator.hpp"
 #include "gridloc/engine/icp_estimator.hpp"
 #include "gridloc/engine/sector_estimator.hpp"
+#include "gridloc/engine/sector_evaluation.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "localization_args.hpp"
@@ -41,15 +42,26 @@ void run(const LocalizeArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const CorrelationEstimator> correlation = std::move(l.estimator);
   std::unique_ptr<Estimator> chosen;
-  if (kind == EstimatorKind::Sectors) {
+  if (kind == EstimatorKind::Sectors || kind == EstimatorKind::SectorsCorrelation) {
     // Global: the window (--prior or --global) only sets on_window_edge.
     if (!is_polygon_map_file(a.inputs.map)) {
-      throw Error(
-          "--estimator sectors needs a polygon map (--map with a 'boundary'; README, "
-          "Polygon maps), not " +
-          a.inputs.map);
+      throw Error("--estimator " + a.estimator +
+                  " needs a polygon map (--map with a 'boundary'; README, Polygon maps), not " +
+                  a.inputs.map);
     }
-    chosen = std::make_unique<SectorEstimator>(load_polygon_map(a.inputs.map));
+    const PolygonMap polygons = load_polygon_map(a.inputs.map);
+    if (kind == EstimatorKind::Sectors) {
+      chosen = std::make_unique<SectorEstimator>(polygons);
+    } else {
+      auto sectors = std::make_shared<const SectorEstimator>(polygons);
+      // The local search on its own 2.5 cm lattice: the sector fix is already within
+      // centimetres (SectorEvalOptions::refinement_resolution).
+      CorrelationOptions fine = correlation->options();
+      fine.resolution = SectorEvalOptions{}.refinement_resolution;
+      auto local = std::make_shared<const CorrelationEstimator>(
+          rasterize_polygon_map(polygons, fine.resolution), fine);
+      chosen = std::make_unique<SectorCorrelationEstimator>(sectors, local);
+    }
   } else if (kind != EstimatorKind::Correlation) {
     auto icp = std::make_shared<const IcpEstimator>(correlation->map());
     if (kind == EstimatorKind::Icp) {
@@ -99,11 +111,13 @@ void add_localize(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("localize", "Localize from sonar readings and a prior; prints JSON");
   a->inputs.add_to(cmd, "no prior: search the whole map and every heading (use --strategy bnb)");
-  cmd->add_option("--estimator", a->estimator,
-                  "correlation (seed 001's search) | icp (seed 004's robust ICP against the "
-                  "map's contour, from --prior; --scan only) | correlation+icp (the search, "
-                  "then ICP from its winner; --scan only) | sectors (seed 000's visibility "
-                  "sectors: global, a polygon --map and a 360 degree --scan)")
+  cmd->add_option(
+         "--estimator", a->estimator,
+         "correlation (seed 001's search) | icp (seed 004's robust ICP against the "
+         "map's contour, from --prior; --scan only) | correlation+icp (the search, "
+         "then ICP from its winner; --scan only) | sectors (seed 000's visibility "
+         "sectors: global, a polygon --map and a 360 degree --scan) | sectors+correlation (the "
+         "sector fix refined by a 2.5 cm local correlation search)")
       ->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

@@ -14,6 +14,7 @@ void add_eval(CLI::App& app);
 void add_relations(CLI::App& app);
 void add_heatmap(CLI::App& app);
 void add_hallway(CLI::App& app);
+void add_sectors(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& p);
 nlohmann::json to_json(const Estimate& e);

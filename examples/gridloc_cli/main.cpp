@@ -1,6 +1,6 @@
 // gridloc: localize a robot on a known map from a sonar ring (seed 001), simulate readings,
-// run the demo and the paper's evaluation, draw tuning heatmaps. Errors print one line and exit
-// with code 2.
+// run the demo and the paper's evaluation, draw tuning heatmaps, list a polygon map's visibility
+// sectors. Errors print one line and exit with code 2.
 #include <iostream>
 
 #include "commands.hpp"
@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   gridloc::cli::add_relations(app);
   gridloc::cli::add_hallway(app);
   gridloc::cli::add_heatmap(app);
+  gridloc::cli::add_sectors(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
