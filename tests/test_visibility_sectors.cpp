@@ -158,8 +158,8 @@ TEST(SectorLocalization, RecoversThePoseAtEachSectorsCentre) {
 
 TEST(SectorLocalization, MostRandomPosesOfTheLRoom) {
   // 60 random poses at least 0.3 m from the walls, any heading, noise-free 360-beam scans.
-  // Measured over 200 such poses: 86.5 % within 2 cm and 0.5 deg, 11.5 % not found, 2 %
-  // wrong (a label that varies inside its sector; README, issue 6 in progress).
+  // Measured over 200 such poses: 97.0 % within 2 cm and 0.5 deg, 3 % not found, none wrong
+  // (92.5 % and 7.5 % without the skeleton match); 59 of these 60.
   const PolygonMap m = l_room();
   const SectorMap s = compute_sectors(m);
   SectorLocalizationOptions o;
@@ -178,7 +178,7 @@ TEST(SectorLocalization, MostRandomPosesOfTheLRoom) {
                 : 0;
   }
   std::cout << "[sectors] L room: " << good << "/60 within 2 cm and 0.5 deg\n";
-  EXPECT_GE(good, 45);
+  EXPECT_GE(good, 56);
 }
 
 TEST(SectorLocalization, TheSkeletonMatchLocalizesPartialViews) {
@@ -231,6 +231,34 @@ TEST(SectorLocalization, ASymmetricRoomIsAmbiguousNotWrong) {
     EXPECT_TRUE(f.ambiguous) << "trial " << t;
   }
   EXPECT_GE(found, 6);
+}
+
+TEST(SectorLocalization, TheLookAlikeSearchFindsTheTwinALabelMisses) {
+  // The bundled symmetric room: its twin sectors' labels, read at points that are not twins,
+  // differ here and there, so the label match alone sometimes finds only one of the two poses
+  // and answers it. Placing the located vertices on every look-alike vertex pair finds the
+  // other. Measured on these 30 poses: 3 answered without the search, none with it.
+  const PolygonMap m = load_polygon_map(test::maps_dir() + "/polygons/room_symmetric.yaml");
+  const SectorMap s = compute_sectors(m);
+  const auto answered = [&](bool search) {
+    SectorLocalizationOptions o;
+    o.lookalike_search = search;
+    Rng rng(8);
+    int n = 0, found = 0;
+    for (int t = 0; t < 30; ++t) {
+      const Pose2 truth = sample_polygon_pose(m, 0.3, rng);
+      const SectorFix f = localize_in_sectors(s, polygon_scan(m, truth, 360, 8.0), o);
+      found += f.found ? 1 : 0;
+      n += f.found && !f.ambiguous ? 1 : 0;
+    }
+    EXPECT_GE(found, 28);
+    return n;
+  };
+  const int without = answered(false), with = answered(true);
+  std::cout << "[sectors] symmetric room: " << without << "/30 answered without the look-alike "
+            << "search, " << with << "/30 with it\n";
+  EXPECT_EQ(with, 0);
+  EXPECT_GT(without, 0);
 }
 
 TEST(SectorLocalization, AScanOfAnotherPlaceIsNotFound) {

@@ -235,9 +235,12 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   for (int i = 1; i < n; ++i)
     beam_step = std::max(beam_step, std::abs(scan.angles[i] - scan.angles[i - 1]));
   beam_step = std::min(beam_step, 0.2);
-  // The rigid fit with correspondences it cannot place left out, worst first; nullopt when
-  // fewer than two remain.
-  const auto trimmed_fit = [&](std::vector<Eigen::Vector2d> local,
+  const auto allowance = [&](const Eigen::Vector2d& local) {
+    return 0.3 + 1.5 * beam_step * local.norm();
+  };
+  // The rigid fit with correspondences it cannot place left out, worst first (`local` keeps
+  // the rest); nullopt when fewer than two remain.
+  const auto trimmed_fit = [&](std::vector<Eigen::Vector2d>& local,
                                std::vector<Eigen::Vector2d> world) -> std::optional<Pose2> {
     while (local.size() >= 2) {
       const Pose2 pose = rigid_fit(local, world);
@@ -246,8 +249,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
       std::size_t worst = 0;
       double worst_excess = 0.0;
       for (std::size_t k = 0; k < local.size(); ++k) {
-        const double excess =
-            (R * local[k] + t - world[k]).norm() - (0.3 + 1.5 * beam_step * local[k].norm());
+        const double excess = (R * local[k] + t - world[k]).norm() - allowance(local[k]);
         if (excess > worst_excess) worst_excess = excess, worst = k;
       }
       if (worst_excess <= 0.0) return pose;
@@ -273,6 +275,20 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     Pose2 pose;
     int deleted, matched;
     double residual;
+    std::vector<Eigen::Vector2d> located;  ///< the vertices the pose was fitted to (robot frame)
+  };
+  std::vector<Eigen::Vector2d> returns;
+  for (int i = 0; i < n; ++i) {
+    if (scan.ranges[i] < scan.max_range) returns.push_back(pts[i]);
+  }
+  // Many sectors give the same correspondences, hence the same rough pose.
+  std::vector<std::pair<Pose2, Pose2>> polish_cache;
+  const auto polished = [&](const Pose2& rough) {
+    for (const auto& [r, p] : polish_cache) {
+      if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
+    }
+    polish_cache.emplace_back(rough, polish(returns, edges, rough));
+    return polish_cache.back().second;
   };
   std::vector<Candidate> found;
   // Deletions on either side: the scan may miss a shallow pair the sector's label has, or
@@ -317,7 +333,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
           const Pose2 pose = *fitted;
           if (sectors.sector_at({pose.x, pose.y}) < 0) continue;  // off the free space
           found.push_back({static_cast<int>(s), pose, deleted, static_cast<int>(local.size()),
-                           residual_at(pose)});
+                           residual_at(pose), local});
         }
       }
     }
@@ -333,19 +349,6 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   // max_deleted_jumps neighbouring D c pairs of either skeleton are left out.
   const std::vector<int> scan_skeleton = skeleton(l.label);
   if (o.skeleton_matching && scan_skeleton.size() >= 2) {
-    std::vector<Eigen::Vector2d> returns;
-    for (int i = 0; i < n; ++i) {
-      if (scan.ranges[i] < scan.max_range) returns.push_back(pts[i]);
-    }
-    // Many sectors give the same correspondences, hence the same rough pose.
-    std::vector<std::pair<Pose2, Pose2>> polish_cache;
-    const auto polished = [&](const Pose2& rough) {
-      for (const auto& [r, p] : polish_cache) {
-        if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
-      }
-      polish_cache.emplace_back(rough, polish(returns, edges, rough));
-      return polish_cache.back().second;
-    };
     const auto jump_variants = skeleton_variants(l.label, scan_skeleton, o.max_deleted_jumps);
     // The correspondences of the scan's skeleton qa turned by k onto the sector's sa.
     const auto try_match = [&](std::size_t s, const std::vector<int>& qa,
@@ -379,7 +382,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
         if (sectors.sector_at({pose.x, pose.y}) < 0) continue;
         // Behind every label match: ties go to the seed's own matching.
         found.push_back({static_cast<int>(s), pose, o.max_deleted_pairs + 1 + deleted,
-                         static_cast<int>(local.size()), residual_at(pose)});
+                         static_cast<int>(local.size()), residual_at(pose), local});
       }
     };
     for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
@@ -400,19 +403,59 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
       }
     }
   }
-  fix.candidates = static_cast<int>(found.size());
   if (found.empty()) return fix;
   // Sectors whose labels match alike often give the same pose from the same vertices: among
   // equal residuals, the candidate whose pose lies in the sector it matched names the sector.
   const auto home = [&](const Candidate& c) {
     return sectors.sector_at({c.pose.x, c.pose.y}) == c.sector ? 0 : 1;
   };
-  const auto best =
-      std::min_element(found.begin(), found.end(), [&](const Candidate& a, const Candidate& b) {
-        if (a.residual != b.residual) return a.residual < b.residual;
-        if (home(a) != home(b)) return home(a) < home(b);
-        return a.deleted < b.deleted;
-      });
+  const auto select = [&] {
+    return std::min_element(found.begin(), found.end(),
+                            [&](const Candidate& a, const Candidate& b) {
+                              if (a.residual != b.residual) return a.residual < b.residual;
+                              if (home(a) != home(b)) return home(a) < home(b);
+                              return a.deleted < b.deleted;
+                            });
+  };
+  // Look-alikes (seed 000 §4.1): the label names vertices by the sector they were read in, and
+  // a look-alike place whose sector's label came out otherwise (labels vary inside a sector)
+  // would never be tried. So the winner's two farthest located vertices are also put on every
+  // other pair of map vertices as far apart; a placement that lands the other located vertices
+  // on map vertices too is polished and scored like any candidate.
+  if (o.lookalike_search) {
+    const Candidate winner = *select();
+    const auto& q = winner.located;
+    std::size_t a = 0, b = 1;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      for (std::size_t j = i + 1; j < q.size(); ++j) {
+        if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
+      }
+    }
+    const double d = (q[a] - q[b]).norm();
+    const double tolerance = 2.0 * std::max(allowance(q[a]), allowance(q[b])) - 0.3;
+    const auto& v = sectors.vertices;
+    for (std::size_t i = 0; i < v.size() && d > 0.3; ++i) {
+      for (std::size_t j = 0; j < v.size(); ++j) {
+        if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
+        const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
+        const Eigen::Rotation2Dd R(rough.theta);
+        const Eigen::Vector2d t(rough.x, rough.y);
+        const bool lands = std::all_of(q.begin(), q.end(), [&](const Eigen::Vector2d& p) {
+          const Eigen::Vector2d w = R * p + t;
+          return std::any_of(v.begin(), v.end(), [&](const Eigen::Vector2d& u) {
+            return (u - w).norm() <= allowance(p);
+          });
+        });
+        if (!lands) continue;
+        const Pose2 pose = polished(rough);
+        const int sector = sectors.sector_at({pose.x, pose.y});
+        if (sector < 0) continue;
+        found.push_back({sector, pose, winner.deleted + 1, winner.matched, residual_at(pose), q});
+      }
+    }
+  }
+  fix.candidates = static_cast<int>(found.size());
+  const auto best = select();
   fix.found = true;
   fix.sector = best->sector;
   // The sector named is one whose label matched with (nearly) this pose and that holds it,

@@ -123,6 +123,10 @@ struct SectorLocalizationOptions {
   /// Neighbouring D c pairs the skeleton match may leave out of one side: a grazing wall's
   /// false jump, a narrow gap between two beams.
   int max_deleted_jumps = 1;
+  /// Also place the winner's located vertices on every look-alike set of map vertices and
+  /// score those poses: a look-alike place whose sector's label differs slightly is then still
+  /// found, so the fix says "ambiguous" instead of answering one of the two.
+  bool lookalike_search = true;
 };
 
 /// What localize_in_sectors() found.
