@@ -1,4 +1,5 @@
-/// Seed 000's visibility sectors, timed on the bundled polygon maps (maps/polygons/):
+/// Seed 000's visibility sectors, timed on the bundled polygon maps (maps/polygons/; the
+/// office only with GRIDLOC_BENCH_FULL=1):
 /// - BM_ComputeSectors/<map>: compute_sectors() with default options (5 cm sampling, labels
 ///   from 3600-beam scans): the once-per-map precomputation. One iteration is one map.
 /// - BM_SectorLocalize/<map>: localize_in_sectors() on global 360-beam scans (8 m, 1 cm
@@ -10,6 +11,7 @@
 ///   (the fix, then the 2.5 cm local correlation search of sectors+correlation).
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +24,13 @@ namespace gridloc::bench {
 namespace {
 
 const char* const kMaps[] = {"room_rect", "room_l", "room_furnished", "office"};
+
+/// The office's rows (index 3) take seconds to set up (its sectors: 3.6 s each time), so
+/// they run only with GRIDLOC_BENCH_FULL=1, like the other slow rows, keeping bench_smoke short.
+int last_map() {
+  const char* v = std::getenv("GRIDLOC_BENCH_FULL");
+  return v != nullptr && std::string(v) == "1" ? 3 : 2;
+}
 
 PolygonMap polygon_map(int index) {
   return load_polygon_map(std::string(GRIDLOC_BENCH_MAPS_DIR) + "/polygons/" + kMaps[index] +
@@ -45,7 +54,7 @@ void BM_ComputeSectors(benchmark::State& state) {
   state.SetLabel(kMaps[state.range(0)]);
   for (auto _ : state) benchmark::DoNotOptimize(compute_sectors(map));
 }
-BENCHMARK(BM_ComputeSectors)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ComputeSectors)->DenseRange(0, last_map())->Unit(benchmark::kMillisecond);
 
 void BM_SectorLocalize(benchmark::State& state) {
   const PolygonMap map = polygon_map(static_cast<int>(state.range(0)));
@@ -63,7 +72,7 @@ void BM_SectorLocalize(benchmark::State& state) {
   state.counters["found"] = found / runs;
   state.counters["candidates"] = candidates / runs;
 }
-BENCHMARK(BM_SectorLocalize)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SectorLocalize)->DenseRange(0, last_map())->Unit(benchmark::kMillisecond);
 
 void BM_SectorCorrelationLocalize(benchmark::State& state) {
   const PolygonMap map = polygon_map(static_cast<int>(state.range(0)));
@@ -86,7 +95,7 @@ void BM_SectorCorrelationLocalize(benchmark::State& state) {
     benchmark::DoNotOptimize(estimator.estimate(obs, window));
   }
 }
-BENCHMARK(BM_SectorCorrelationLocalize)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SectorCorrelationLocalize)->DenseRange(0, last_map())->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gridloc::bench
