@@ -233,7 +233,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   // grows with range.
   double beam_step = 2.0 * std::numbers::pi / n;
   for (int i = 1; i < n; ++i)
-    beam_step = std::max(beam_step, std::abs(scan.angles[i] - scan.angles[i - 1]));
+    beam_step = std::max(beam_step, std::abs(normalize_angle(scan.angles[i] - scan.angles[i - 1])));
   beam_step = std::min(beam_step, 0.2);
   const auto allowance = [&](const Eigen::Vector2d& local) {
     return 0.3 + 1.5 * beam_step * local.norm();

@@ -26,8 +26,9 @@ struct ScanLabelOptions {
   /// a discontinuity (seed 000's epsilon_T, which it leaves open).
   double eps_abs_m = 0.3;
   double eps_rel = 0.15;
-  /// Readings are median-filtered over this many beams first (odd, 1 = off): seed 003 smooths
-  /// its real IR data the same way.
+  /// Readings are median-filtered over this many beams first (odd, 1 = off). Seed 003 (ch. VI B)
+  /// smooths its real IR data with a moving average over +-5 readings; a median removes the
+  /// same spikes but keeps the jumps that D and c need.
   int median_window = 3;
   /// A local maximum and minimum of a continuous run that differ by less than this (m) are
   /// noise and dropped in pairs, the flattest first.
