@@ -184,8 +184,8 @@ TEST(SectorLocalization, MostRandomPosesOfTheLRoom) {
 TEST(SectorLocalization, TheSkeletonMatchLocalizesPartialViews) {
   // The bundled office seen by 360 beams: far and short edges get too few readings for their
   // extrema (seed 000's assumption (ii)), so exact labels often differ from the sectors'. The
-  // D c skeleton still matches. Measured on these 12 poses: 5 within 2 cm and 0.5 deg without
-  // it, 9 with it.
+  // D c skeleton still matches. Measured on these 12 poses: 6 within 2 cm and 0.5 deg without
+  // it, 12 with it (with the look-alike search on in both).
   const PolygonMap m = load_polygon_map(test::maps_dir() + "/polygons/office.yaml");
   const SectorMap s = compute_sectors(m);
   const auto good = [&](bool skeleton) {
@@ -207,7 +207,7 @@ TEST(SectorLocalization, TheSkeletonMatchLocalizesPartialViews) {
   const int without = good(false), with = good(true);
   std::cout << "[sectors] office: " << without << "/12 without the skeleton match, " << with
             << "/12 with it\n";
-  EXPECT_GE(with, 9);
+  EXPECT_GE(with, 11);
   EXPECT_GT(with, without);
 }
 

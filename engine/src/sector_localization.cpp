@@ -191,10 +191,10 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
                               const SectorLocalizationOptions& o) {
   validate(scan);
   if (o.max_deleted_pairs < 0 || o.line_points < 2 || !(o.ambiguity_residual_m >= 0.0) ||
-      !(o.residual_cap_m > 0.0)) {
+      !(o.residual_cap_m > 0.0) || !(o.rough_residual_m > 0.0) || o.max_deleted_jumps < 0) {
     throw Error(
-        "SectorLocalizationOptions: max_deleted_pairs must be >= 0, line_points >= 2, "
-        "ambiguity_residual_m >= 0, residual_cap_m > 0");
+        "SectorLocalizationOptions: max_deleted_pairs and max_deleted_jumps must be >= 0, "
+        "line_points >= 2, ambiguity_residual_m >= 0, residual_cap_m and rough_residual_m > 0");
   }
   const ScanLabel l = construct_scan_label(scan, o.label);
   SectorFix fix;
@@ -208,10 +208,11 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   const auto edges = polygon_edges(sectors.map);
   // How well the map explains the scan at a pose: each beam's range against the range cast
   // along it on the polygons, the difference capped, averaged.
-  const auto range_residual = [&](const Pose2& pose) {
+  const auto range_residual = [&](const Pose2& pose, int stride) {
     const Eigen::Vector2d origin(pose.x, pose.y);
     double sum = 0.0;
-    for (int i = 0; i < n; ++i) {
+    int used = 0;
+    for (int i = 0; i < n; i += stride, ++used) {
       const double a = pose.theta + scan.angles[i];
       const Eigen::Vector2d dir(std::cos(a), std::sin(a));
       double expected = scan.max_range;
@@ -225,7 +226,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
       sum +=
           std::min(o.residual_cap_m, std::abs(std::min(scan.ranges[i], scan.max_range) - expected));
     }
-    return sum / n;
+    return sum / used;
   };
   // Located vertices that a rigid motion cannot put near their map vertices are wrong
   // correspondences (a corner fitted across two surfaces) or a wrong match: cheap to rule out
@@ -267,7 +268,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
         return r;
       }
     }
-    scored.emplace_back(pose, range_residual(pose));
+    scored.emplace_back(pose, range_residual(pose, 1));
     return scored.back().second;
   };
   struct Candidate {
@@ -287,7 +288,12 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     for (const auto& [r, p] : polish_cache) {
       if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
     }
-    polish_cache.emplace_back(rough, polish(returns, edges, rough));
+    // A rough pose the scan plainly refutes (a quarter of the beams, capped mean) is not
+    // worth a polish: wrong matches are most of the candidates, and the polish most of the
+    // cost. Right matches are a few centimetres off before the polish, far below the bar.
+    const Pose2 p =
+        range_residual(rough, 4) > o.rough_residual_m ? rough : polish(returns, edges, rough);
+    polish_cache.emplace_back(rough, p);
     return polish_cache.back().second;
   };
   std::vector<Candidate> found;

@@ -118,6 +118,9 @@ struct SectorLocalizationOptions {
   /// beams on a notch tell a room from its turned twin, where a median would ignore them,
   /// and clutter the map lacks costs a bounded amount.
   double residual_cap_m = 0.3;
+  /// A rough pose (from located corners, before the polish) whose residual on a quarter of the
+  /// beams exceeds this (m) is scored unpolished: the scan refutes it anyway.
+  double rough_residual_m = 0.2;
   /// Also match the scan's D c skeleton (its jumps) against the sectors', the extrema between
   /// jumps free to differ: partial views of far or short edges (seed 000 §4.2) still localize.
   bool skeleton_matching = true;
