@@ -28,6 +28,7 @@ constexpr const char* kPolygonMaps =
 struct EvalArgs {
   std::string maps, ring, noise = "realistic";
   bool maps_given = false;  ///< --maps was on the command line
+  double step_xy = 0.1;     ///< the correlation's grid cell = translation step (m)
   SearchArgs search;
   OctomapArgs octomap;
   int trials = 100;
@@ -107,6 +108,7 @@ void run_sectors(const EvalArgs& a, const std::vector<std::string>& files) {
   o.max_range = a.laser.max_range;
   o.sigma_m = a.laser.sigma_m;
   a.search.apply(o.correlation);
+  o.correlation.resolution = a.step_xy;
   if (!a.estimators.empty()) {
     o.estimators.clear();
     for (const auto& name : split(a.estimators)) o.estimators.push_back(parse_estimator_kind(name));
@@ -115,6 +117,10 @@ void run_sectors(const EvalArgs& a, const std::vector<std::string>& files) {
 }
 
 void run(const EvalArgs& a) {
+  if (!(a.step_xy > 0.0) || !std::isfinite(a.step_xy)) {
+    throw Error("--step-xy must be a positive cell size in metres, got " +
+                std::to_string(a.step_xy));
+  }
   // Polygon maps or a sector estimator: the sector protocol.
   bool sectors = false;
   for (const auto& name : split(a.estimators))
@@ -147,6 +153,7 @@ void run(const EvalArgs& a) {
   o.trials = a.trials;
   o.seed = a.seed;
   a.search.apply(o.search);
+  o.search.resolution = o.window.step_xy = a.step_xy;
   if (a.noise == "none") {
     o.noise = SonarSimOptions{};
   } else if (a.noise != "realistic") {
@@ -276,6 +283,9 @@ void add_eval(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
   cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
   a->search.add_to(cmd);
+  cmd->add_option("--step-xy", a->step_xy,
+                  "the correlation search's grid cell and translation step (m; seed 001: 0.1)")
+      ->capture_default_str();
   cmd->add_flag("--json", a->json, "print JSON instead of the table");
   cmd->add_flag("--quiet", a->quiet, "no progress line");
   cmd->add_flag("--noisy", a->noisy,
