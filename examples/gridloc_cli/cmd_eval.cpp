@@ -42,11 +42,6 @@ struct EvalArgs {
   LaserProtocol laser;
 };
 
-/// A number, or null when it is NaN (an AUROC without failures).
-nlohmann::json number_or_null(double v) {
-  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-}
-
 /// One line per trial and configuration: what calibration studies need.
 void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& o) {
   std::ofstream out(path);

@@ -10,7 +10,6 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -23,6 +22,7 @@
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
 #include "gridloc/sensors/sonar_model.hpp"
+#include "heatmap_plot.hpp"
 #include "heatmap_render.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
@@ -61,16 +61,6 @@ void write_npy(const std::string& path, const ScoreVolume& v) {
   f.write(reinterpret_cast<const char*>(data.data()),
           static_cast<std::streamsize>(data.size() * sizeof(float)));
   if (!f) throw Error(path + ": cannot write the score volume");
-}
-
-void write_png(const std::string& path, const cv::Mat& img) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 9});
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw Error(path + ": cannot write the image");
 }
 
 nlohmann::json volume_json(const ScoreVolume& v, const SearchWindow& window,
@@ -202,12 +192,13 @@ void run(const HeatmapArgs& a) {
                                 {"volume", "volume.json"}};
   nlohmann::json files;
   for (const auto& [key, name] : names.items()) files[key] = file(name.get<std::string>());
-  write_png(file("score_xy_best_theta.png"), render_score_xy(v, estimator.map(), marks, false));
-  write_png(file("score_xy_max_theta.png"), render_score_xy(v, estimator.map(), marks, true));
-  write_png(file("score_theta.png"), render_score_theta(v, marks));
-  write_png(file("local_overlay.png"),
-            render_local_overlay(estimator.level(0), v.geometry, local, robot,
-                                 estimator.ring().footprint, marks));
+  plot::write_png(file("score_xy_best_theta.png"),
+                  render_score_xy(v, estimator.map(), marks, false));
+  plot::write_png(file("score_xy_max_theta.png"), render_score_xy(v, estimator.map(), marks, true));
+  plot::write_png(file("score_theta.png"), render_score_theta(v, marks));
+  plot::write_png(file("local_overlay.png"),
+                  render_local_overlay(estimator.level(0), v.geometry, local, robot,
+                                       estimator.ring().footprint, marks));
   write_npy(file("scores.npy"), v);
   {
     std::ofstream f(file("volume.json"));

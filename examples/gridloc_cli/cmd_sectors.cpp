@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "gridloc/engine/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
+#include "heatmap_plot.hpp"
 #include "sectors_render.hpp"
 
 namespace gridloc::cli {
@@ -90,16 +90,6 @@ void print_table(const SectorsArgs& a, const SectorMap& s) {
   }
 }
 
-void write_png(const std::string& path, const cv::Mat& img) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 9});
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw Error(path + ": cannot write the image");
-}
-
 void run(const SectorsArgs& a) {
   if (!(a.cell_m > 0.0) || !std::isfinite(a.cell_m)) {
     throw Error("--cell must be a positive cell size in metres, got " + std::to_string(a.cell_m));
@@ -129,7 +119,7 @@ void run(const SectorsArgs& a) {
       f << j.dump(2) << "\n";
       if (!f) throw Error(json_path + ": cannot write the sectors");
     }
-    write_png(png_path, render_sectors(s, fs::path(a.polygons).filename().string()));
+    plot::write_png(png_path, render_sectors(s, fs::path(a.polygons).filename().string()));
     written = "wrote " + png_path + " and " + json_path + "\n";
   }
   // stdout stays pure JSON with --json; the files are where --out said.

@@ -17,6 +17,8 @@ void add_hallway(CLI::App& app);
 void add_sectors(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& p);
+/// A number, or null when it is NaN (an AUROC without failures, a rate of nothing).
+nlohmann::json number_or_null(double v);
 nlohmann::json to_json(const Estimate& e);
 
 }  // namespace gridloc::cli

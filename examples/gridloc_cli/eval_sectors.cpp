@@ -13,10 +13,6 @@
 namespace gridloc::cli {
 namespace {
 
-nlohmann::json number_or_null(double v) {
-  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
-}
-
 void write_trials(const std::string& path, const SectorEvalReport& report,
                   const SectorEvalOptions& o) {
   std::ofstream out(path);

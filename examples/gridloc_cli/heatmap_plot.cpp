@@ -1,12 +1,25 @@
 #include "heatmap_plot.hpp"
 
+#include "gridloc/grids/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 namespace gridloc::cli::plot {
+
+void write_png(const std::string& path, const cv::Mat& img) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, img, {cv::IMWRITE_PNG_COMPRESSION, 9});
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  if (!ok) throw Error(path + ": cannot write the image");
+}
 namespace {
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;

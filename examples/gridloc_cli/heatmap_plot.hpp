@@ -20,6 +20,9 @@ constexpr double kTickScale = 0.45;   ///< tick labels, legends
 constexpr double kLabelScale = 0.5;   ///< axis labels
 constexpr double kTitleScale = 0.62;  ///< the title line
 
+/// Writes `img` as a PNG; gridloc::Error naming `path` when it cannot.
+void write_png(const std::string& path, const cv::Mat& img);
+
 /// Draws `s` with its baseline's left end at `org` (anti-aliased Hershey simplex).
 void text(cv::Mat& img, const std::string& s, cv::Point org, double scale,
           const cv::Scalar& colour = kInk, int thickness = 1);

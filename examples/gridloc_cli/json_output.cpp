@@ -5,6 +5,10 @@
 
 namespace gridloc::cli {
 
+nlohmann::json number_or_null(double v) {
+  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+}
+
 nlohmann::json to_json(const Pose2& p) {
   return {{"x", p.x}, {"y", p.y}, {"theta", p.theta}};
 }
