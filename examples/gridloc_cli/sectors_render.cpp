@@ -90,40 +90,51 @@ plot::LegendItem swatch(std::function<void(cv::Mat&, const cv::Rect&)> fill, std
           std::move(label)};
 }
 
-/// Where sector k's number (k + 1, the table's row) goes: the baseline origin of its text,
-/// centred on the representative point, in plot-area pixels. Largest sectors first; a number
-/// is left out unless nearly all of its box lies on its own sector and clear of those placed
-/// before, so that it can name no other sector.
-std::vector<std::optional<cv::Point>> place_numbers(const SectorMap& s, const cv::Mat& id,
-                                                    const View& view) {
+/// A sector's mark on the picture: its text and the baseline origin of that text.
+struct Mark {
+  std::string text;
+  cv::Point origin;
+};
+
+/// What names sector k on the picture: "k+1 label" (the table's row and the label) where it
+/// fits, else the row number alone, centred on the representative point, in plot-area pixels.
+/// Largest sectors first; a mark is left out unless nearly all of its box lies on its own
+/// sector and clear of those placed before, so that it can name no other sector.
+std::vector<std::optional<Mark>> place_marks(const SectorMap& s, const cv::Mat& id,
+                                             const View& view) {
   std::vector<std::size_t> order(s.sectors.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return s.sectors[a].cells > s.sectors[b].cells;
   });
-  std::vector<std::optional<cv::Point>> at(s.sectors.size());
+  std::vector<std::optional<Mark>> at(s.sectors.size());
   std::vector<cv::Rect> placed;
   const cv::Rect plot_area(0, 0, id.cols, id.rows);
-  for (const std::size_t k : order) {
-    const cv::Size ts = plot::text_size(std::to_string(k + 1), plot::kLabelScale);
+  const auto fits = [&](std::size_t k, const std::string& text) -> std::optional<Mark> {
+    const cv::Size ts = plot::text_size(text, plot::kLabelScale);
     const Eigen::Vector2d& p = s.sectors[k].representative;
     const cv::Point2d q = view.px(p.x(), p.y()) - cv::Point2d(view.origin);
     const cv::Point org(static_cast<int>(std::lround(q.x - ts.width / 2.0)),
                         static_cast<int>(std::lround(q.y + ts.height / 2.0)));
     const cv::Rect box(org.x - 2, org.y - ts.height - 3, ts.width + 4, ts.height + 6);
-    if ((box & plot_area) != box) continue;
+    if ((box & plot_area) != box) return std::nullopt;
     if (std::any_of(placed.begin(), placed.end(),
                     [&](const cv::Rect& r) { return (r & box).area() > 0; })) {
-      continue;
+      return std::nullopt;
     }
     int own = 0;
     for (int r = box.y; r < box.y + box.height; ++r) {
       for (int c = box.x; c < box.x + box.width; ++c)
         own += id.at<int>(r, c) == static_cast<int>(k);
     }
-    if (own < 0.85 * box.area()) continue;
-    at[k] = org;
+    if (own < 0.85 * box.area()) return std::nullopt;
     placed.push_back(box);
+    return Mark{text, org};
+  };
+  for (const std::size_t k : order) {
+    const std::string number = std::to_string(k + 1);
+    at[k] = s.sectors[k].label.empty() ? std::nullopt : fits(k, number + " " + s.sectors[k].label);
+    if (!at[k]) at[k] = fits(k, number);
   }
   return at;
 }
@@ -153,9 +164,12 @@ cv::Mat render_sectors(const SectorMap& s, const std::string& name) {
       id.at<int>(r, c) = sector_near(s, {p.x, p.y});
     }
   }
-  const std::vector<std::optional<cv::Point>> numbers = place_numbers(s, id, view);
+  const std::vector<std::optional<Mark>> marks = place_marks(s, id, view);
   const auto numbered =
-      std::count_if(numbers.begin(), numbers.end(), [](const auto& n) { return n.has_value(); });
+      std::count_if(marks.begin(), marks.end(), [](const auto& n) { return n.has_value(); });
+  const auto labelled = std::count_if(marks.begin(), marks.end(), [](const auto& n) {
+    return n.has_value() && n->text.find(' ') != std::string::npos;
+  });
 
   int ambiguous = 0;
   for (const Sector& sector : s.sectors) ambiguous += sector.ambiguous ? 1 : 0;
@@ -163,14 +177,16 @@ cv::Mat render_sectors(const SectorMap& s, const std::string& name) {
       "Visibility sectors of " + name + ": " + std::to_string(s.sectors.size()) +
       (s.sectors.size() == 1 ? " sector, " : " sectors, ") + std::to_string(ambiguous) +
       " ambiguous, N'_min " + std::to_string(s.n_min_two()) + " readings per turn";
-  // Many small sectors cannot all carry a number: say how many do.
-  const std::string which = numbered == static_cast<long>(s.sectors.size())
-                                ? "numbers are the rows of the table of `gridloc sectors`"
-                                : std::to_string(numbered) +
-                                      " sectors large enough are numbered (the rows of the table "
-                                      "of `gridloc sectors`)";
+  // Many small sectors cannot all carry a number, nor many numbers their label: say how many
+  // do.
+  const std::string which =
+      (numbered == static_cast<long>(s.sectors.size())
+           ? std::string("every sector is numbered")
+           : std::to_string(numbered) + " sectors large enough are numbered") +
+      " (the rows of the table of `gridloc sectors`), " + std::to_string(labelled) +
+      " with their label";
   const std::string caption = "sampled on " + plot::number(s.grid.resolution) + " m cells; " +
-                              which + "; labels read counter-clockwise from east";
+                              which + ", read counter-clockwise from east";
   const int width = std::max({kLeft + view.width() + kRight,
                               plot::text_size(title, plot::kTitleScale, 2).width + 24,
                               plot::text_size(caption, plot::kTickScale).width + 24});
@@ -220,8 +236,8 @@ cv::Mat render_sectors(const SectorMap& s, const std::string& name) {
     plot::circle(img, view.px(v.x(), v.y()), 4.0, kWall, cv::FILLED);
   }
   for (std::size_t k = 0; k < s.sectors.size(); ++k) {
-    if (!numbers[k]) continue;
-    plot::halo_text(img, std::to_string(k + 1), *numbers[k] + view.origin, plot::kLabelScale,
+    if (!marks[k]) continue;
+    plot::halo_text(img, marks[k]->text, marks[k]->origin + view.origin, plot::kLabelScale,
                     s.sectors[k].ambiguous ? kAmbiguous : plot::kInk);
   }
   plot::axes_m(img, view, 0.0, 0.0, "x (m)", "y (m)");
