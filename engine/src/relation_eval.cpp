@@ -32,9 +32,9 @@ Pose2 relative_pose(const Pose2& a, const Pose2& b) {
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& o, bool* converged) {
   if (o.matcher == EstimatorKind::Sectors || o.matcher == EstimatorKind::SectorsCorrelation) {
-    throw Error(
-        "relations: the sectors estimator localizes on a polygon map, it does not match "
-        "two scans; use icp, correlation or correlation+icp");
+    throw Error("relations: the " + to_string(o.matcher) +
+                " estimator localizes on a polygon map, it does not match two scans; use icp, "
+                "correlation or correlation+icp");
   }
   if (converged != nullptr) *converged = true;
   const auto ref_points = scan_returns(reference);

@@ -15,6 +15,10 @@ void check(const ScanLabelOptions& o) {
       !std::isfinite(o.eps_abs_m) || !std::isfinite(o.eps_rel) || !std::isfinite(o.prominence_m)) {
     throw Error("ScanLabelOptions: eps_abs_m must be positive, eps_rel and prominence_m >= 0");
   }
+  if (o.bridge_beams < 0) {
+    throw Error("ScanLabelOptions.bridge_beams must be >= 0, got " +
+                std::to_string(o.bridge_beams));
+  }
   if (o.median_window < 1 || o.median_window % 2 == 0) {
     throw Error("ScanLabelOptions.median_window must be odd and >= 1, got " +
                 std::to_string(o.median_window));
@@ -36,6 +40,19 @@ ScanLabel construct_scan_label(const RangeScan& scan, const ScanLabelOptions& o)
   // Beams without return read as the max range: far, so a jump to them is a discontinuity.
   std::vector<double> raw(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) raw[i] = std::min(scan.ranges[i], scan.max_range);
+  // A short run of beams without return between two returns that continue each other is a
+  // dropout (glass, a dark surface), not a view into the distance: bridged, it adds no jumps.
+  for (int i = 0; i < n && o.bridge_beams > 0; ++i) {
+    const int before = (i + n - 1) % n;
+    if (scan.ranges[i] < scan.max_range || scan.ranges[before] >= scan.max_range) continue;
+    int len = 0;
+    while (len < n && scan.ranges[(i + len) % n] >= scan.max_range) ++len;
+    const int after = (i + len) % n;
+    if (len > o.bridge_beams || len >= n - 1) continue;
+    const double a = raw[before], b = raw[after];
+    if (std::abs(a - b) > o.eps_abs_m + o.eps_rel * std::min(a, b)) continue;
+    for (int k = 0; k < len; ++k) raw[(i + k) % n] = a + (b - a) * (k + 1) / (len + 1);
+  }
   std::vector<double> r(raw);
   if (o.median_window > 1 && n >= o.median_window) {
     const int h = o.median_window / 2;

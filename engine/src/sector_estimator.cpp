@@ -52,7 +52,13 @@ Estimate SectorEstimator::to_estimate(const SectorFix& f, const SearchWindow& wi
                                                                        : Verdict::Localized;
   e.on_window_edge = f.found && (std::abs(f.pose.x - window.center.x) > window.half_xy ||
                                  std::abs(f.pose.y - window.center.y) > window.half_xy);
-  e.alternatives = {{e.pose, e.score}};
+  // The look-alikes of an ambiguous fix, best first, scored like the confidence.
+  for (const SectorFix::Alternative& a : f.alternatives) {
+    e.alternatives.push_back({a.pose, std::exp(-a.residual_m / options_.residual_scale_m)});
+  }
+  if (e.alternatives.empty()) e.alternatives = {{e.pose, e.score}};
+  if (e.alternatives.size() > 1) e.second_score = e.alternatives[1].score;
+  e.covariance = f.covariance;
   e.stats.poses_scored = f.candidates;
   e.stats.proven_optimal = false;
   e.stats.upper_bound = std::numeric_limits<double>::quiet_NaN();
@@ -110,7 +116,7 @@ SectorEstimate SectorCorrelationEstimator::locate(const Observation& observation
     e.score = c.score;
     e.normalized_score = c.normalized_score;
     e.covariance = c.covariance;
-    e.alternatives = {{e.pose, e.score}};
+    e.alternatives.front() = {e.pose, e.score};  // the look-alikes stay the fix's
     e.stats.cells_scored = c.stats.cells_scored;
     e.stats.poses_scored += c.stats.poses_scored;
     e.on_window_edge = std::abs(e.pose.x - window.center.x) > window.half_xy ||

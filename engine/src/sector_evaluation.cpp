@@ -35,6 +35,21 @@ double distance_to_walls(const PolygonMap& map, const Eigen::Vector2d& p) {
   return d;
 }
 
+/// A label a scan cannot pin down: another sector's label turned (Sector::ambiguous), or the
+/// label itself turned part of a turn (a rectangle's mMmMmMmM: its sector may hold twin poses).
+bool label_ambiguous(const Sector& s) {
+  if (s.ambiguous) return true;
+  const std::string& l = s.label;
+  const std::size_t n = l.size();
+  for (std::size_t k = 1; k < n; ++k) {
+    if (n % k != 0) continue;
+    bool turned_equal = true;
+    for (std::size_t i = 0; i < n && turned_equal; ++i) turned_equal = l[i] == l[(i + k) % n];
+    if (turned_equal) return true;
+  }
+  return false;
+}
+
 bool is_sector_kind(EstimatorKind k) {
   return k == EstimatorKind::Sectors || k == EstimatorKind::SectorsCorrelation;
 }
@@ -124,18 +139,24 @@ SectorEvalReport run_sector_evaluation(const std::vector<SectorEvalMap>& maps,
     Eigen::Vector2d lo = polygons.boundary.front(), hi = lo;
     for (const auto& p : polygons.boundary) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     int ambiguous_sectors = 0;
-    for (const Sector& s : sm.sectors) ambiguous_sectors += s.ambiguous ? 1 : 0;
+    for (const Sector& s : sm.sectors) ambiguous_sectors += label_ambiguous(s) ? 1 : 0;
     report.sectors_per_map.push_back(static_cast<int>(sm.sectors.size()));
     report.ambiguous_sectors_per_map.push_back(ambiguous_sectors);
 
     for (int t = 0; t < options.trials; ++t) {
       Rng rng(mix(mix(options.seed, m), static_cast<std::uint64_t>(t)));
-      const Pose2 truth = sample_polygon_pose(polygons, options.clearance_m, rng);
+      Pose2 truth;
+      try {
+        truth = sample_polygon_pose(polygons, options.clearance_m, rng);
+      } catch (const Error& e) {
+        throw Error(maps[m].name + ": " + e.what());
+      }
       Observation obs;
       obs.scan = polygon_scan(polygons, truth, options.beams, options.max_range);
       add_range_noise(*obs.scan, options.sigma_m, rng.next());
       const int true_sector = sm.sector_at({truth.x, truth.y});
-      const bool ambiguous_label = true_sector >= 0 && sm.sectors[true_sector].ambiguous;
+      const bool ambiguous_label =
+          true_sector >= 0 && label_ambiguous(sm.sectors[static_cast<std::size_t>(true_sector)]);
       // No prior: the correlation searches the whole map; the sector estimators ignore the
       // window (it only sets on_window_edge).
       SearchWindow window;
@@ -162,7 +183,9 @@ SectorEvalReport run_sector_evaluation(const std::vector<SectorEvalMap>& maps,
         }
         const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
         const double dt = std::abs(normalize_angle(e.pose.theta - truth.theta));
-        const bool success = dp <= options.success_xy && dt <= options.success_theta;
+        // "Not localized" answers sit at the window's centre: never a success, wherever that is.
+        const bool success = dp <= options.success_xy && dt <= options.success_theta &&
+                             e.verdict != Verdict::NotLocalized;
         pos_err[k].push_back(dp);
         head_err[k].push_back(rad2deg(dt));
         ms[k].push_back(e.stats.elapsed_ms);

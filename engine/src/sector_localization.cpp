@@ -185,11 +185,92 @@ Pose2 polish(const std::vector<Eigen::Vector2d>& points,
   return pose;
 }
 
+/// The Gauss-Newton covariance sigma^2 H^-1 of a pose fitted to the walls (polish()'s last
+/// gate): sigma^2 from the residuals, infinite variances where the walls leave a direction
+/// free (a corridor's axis).
+Eigen::Matrix3d pose_covariance(
+    const std::vector<Eigen::Vector2d>& points,
+    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges, const Pose2& pose) {
+  constexpr double gate = 0.04;
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  double sum2 = 0.0;
+  int used = 0;
+  const Eigen::Rotation2Dd R(pose.theta);
+  const Eigen::Vector2d t(pose.x, pose.y);
+  for (const auto& p : points) {
+    const Eigen::Vector2d rp = R * p, w = rp + t;
+    double best = gate;
+    Eigen::Vector2d normal;
+    for (const auto& [a, b] : edges) {
+      const Eigen::Vector2d e = b - a;
+      const double u = (w - a).dot(e) / e.squaredNorm();
+      if (u < 0.0 || u > 1.0) continue;
+      const Eigen::Vector2d nrm = Eigen::Vector2d(-e.y(), e.x()).normalized();
+      const double d = nrm.dot(w - a);
+      if (std::abs(d) < best) best = std::abs(d), normal = nrm;
+    }
+    if (best >= gate) continue;
+    const Eigen::Vector3d J(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rp.y(), rp.x())));
+    H += J * J.transpose();
+    sum2 += best * best;
+    ++used;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Constant(inf);
+  if (used <= 3) return cov;
+  // A floor on sigma: exact (noise-free) readings would claim an exact pose.
+  const double sigma2 = std::max(sum2 / (used - 3), 1e-6);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+  if (eig.eigenvalues().minCoeff() < 1e-9 * std::max(1.0, eig.eigenvalues().maxCoeff())) {
+    return cov;
+  }
+  return sigma2 * H.inverse();
+}
+
+/// Seed 000 §3.1's scan is a full turn: angles increase and cover 360 deg without a large
+/// gap. Throws gridloc::Error naming the fault otherwise (a 180 or 270 deg field of view, a
+/// scan in degrees, clockwise beams).
+void check_full_turn(const RangeScan& scan) {
+  const std::size_t n = scan.angles.size();
+  if (n < 3) throw Error("sectors: a scan of " + std::to_string(n) + " beams is no full turn");
+  std::vector<double> steps;
+  double widest = 0.0;
+  std::size_t after = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double d = scan.angles[i] - scan.angles[i - 1];
+    if (!(d > 0.0)) {
+      throw Error("sectors: scan angles must increase (counter-clockwise beams); beam " +
+                  std::to_string(i) + " is at " + std::to_string(scan.angles[i]) + " rad after " +
+                  std::to_string(scan.angles[i - 1]));
+    }
+    steps.push_back(d);
+    if (d > widest) widest = d, after = i - 1;
+  }
+  const double span = scan.angles.back() - scan.angles.front();
+  if (span >= 2.0 * std::numbers::pi + 1e-9) {
+    throw Error("sectors: scan angles span " + std::to_string(span) +
+                " rad, more than a turn (radians expected)");
+  }
+  const double closing = 2.0 * std::numbers::pi - span;
+  if (closing > widest) widest = closing, after = n - 1;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
+                   steps.end());
+  const double step = steps[steps.size() / 2];
+  if (widest > std::max(4.0 * step, 0.2)) {
+    throw Error("sectors: the scan covers " +
+                std::to_string(std::lround(rad2deg(2.0 * std::numbers::pi - widest))) +
+                " deg (a gap of " + std::to_string(std::lround(rad2deg(widest))) +
+                " deg after beam " + std::to_string(after) +
+                "); visibility sectors need a full 360 deg turn");
+  }
+}
+
 }  // namespace
 
 SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
                               const SectorLocalizationOptions& o) {
   validate(scan);
+  check_full_turn(scan);
   if (o.max_deleted_pairs < 0 || o.line_points < 2 || !(o.ambiguity_residual_m >= 0.0) ||
       !(o.residual_cap_m > 0.0) || !(o.rough_residual_m > 0.0) || o.max_deleted_jumps < 0) {
     throw Error(
@@ -206,13 +287,19 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     pts[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
   }
   const auto edges = polygon_edges(sectors.map);
-  // How well the map explains the scan at a pose: each beam's range against the range cast
-  // along it on the polygons, the difference capped, averaged.
+  // How well the map explains the scan at a pose: each return's range against the range
+  // cast along its beam on the polygons, the difference capped, averaged. Beams without
+  // return do not count: real scanners drop beams on glass and dark surfaces.
+  std::vector<int> hits;
+  for (int i = 0; i < n; ++i) {
+    if (scan.ranges[i] < scan.max_range) hits.push_back(i);
+  }
   const auto range_residual = [&](const Pose2& pose, int stride) {
     const Eigen::Vector2d origin(pose.x, pose.y);
     double sum = 0.0;
     int used = 0;
-    for (int i = 0; i < n; i += stride, ++used) {
+    for (std::size_t h = 0; h < hits.size(); h += static_cast<std::size_t>(stride), ++used) {
+      const int i = hits[h];
       const double a = pose.theta + scan.angles[i];
       const Eigen::Vector2d dir(std::cos(a), std::sin(a));
       double expected = scan.max_range;
@@ -223,8 +310,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
         const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
         if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
       }
-      sum +=
-          std::min(o.residual_cap_m, std::abs(std::min(scan.ranges[i], scan.max_range) - expected));
+      sum += std::min(o.residual_cap_m, std::abs(scan.ranges[i] - expected));
     }
     return sum / used;
   };
@@ -284,15 +370,17 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   }
   // Many sectors give the same correspondences, hence the same rough pose.
   std::vector<std::pair<Pose2, Pose2>> polish_cache;
-  const auto polished = [&](const Pose2& rough) {
+  const auto polished = [&](const Pose2& rough, bool gated) {
     for (const auto& [r, p] : polish_cache) {
       if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
     }
-    // A rough pose the scan plainly refutes (a quarter of the beams, capped mean) is not
-    // worth a polish: wrong matches are most of the candidates, and the polish most of the
-    // cost. Right matches are a few centimetres off before the polish, far below the bar.
-    const Pose2 p =
-        range_residual(rough, 4) > o.rough_residual_m ? rough : polish(returns, edges, rough);
+    // A rough pose from located corners that the scan plainly refutes (a quarter of the
+    // returns, capped mean) is not worth a polish: wrong matches are most of the candidates,
+    // and the polish most of the cost. Right matches are a few centimetres off before the
+    // polish, far below the bar. Look-alike placements rest on two corners only and can be
+    // tens of centimetres off: they are always polished.
+    const bool refuted = gated && range_residual(rough, 4) > o.rough_residual_m;
+    const Pose2 p = refuted ? rough : polish(returns, edges, rough);
     polish_cache.emplace_back(rough, p);
     return polish_cache.back().second;
   };
@@ -384,7 +472,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
         if (local.size() < 2) continue;
         const std::optional<Pose2> rough = trimmed_fit(local, world);
         if (!rough) continue;
-        const Pose2 pose = polished(*rough);
+        const Pose2 pose = polished(*rough, true);
         if (sectors.sector_at({pose.x, pose.y}) < 0) continue;
         // Behind every label match: ties go to the seed's own matching.
         found.push_back({static_cast<int>(s), pose, o.max_deleted_pairs + 1 + deleted,
@@ -430,30 +518,36 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   // on map vertices too is polished and scored like any candidate.
   if (o.lookalike_search) {
     const Candidate winner = *select();
-    const auto& q = winner.located;
+    const auto& v = sectors.vertices;
+    const auto near_vertex = [&](const Pose2& at, const Eigen::Vector2d& p) {
+      const Eigen::Vector2d w = Eigen::Rotation2Dd(at.theta) * p + Eigen::Vector2d(at.x, at.y);
+      return std::any_of(v.begin(), v.end(),
+                         [&](const Eigen::Vector2d& u) { return (u - w).norm() <= allowance(p); });
+    };
+    // Only the located corners that land on a map vertex at the winner's own pose: the
+    // polish may have moved it from where its rough fit put a wall point.
+    std::vector<Eigen::Vector2d> q;
+    for (const auto& p : winner.located) {
+      if (near_vertex(winner.pose, p)) q.push_back(p);
+    }
+    if (q.size() < 2) q.clear();
     std::size_t a = 0, b = 1;
     for (std::size_t i = 0; i < q.size(); ++i) {
       for (std::size_t j = i + 1; j < q.size(); ++j) {
         if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
       }
     }
-    const double d = (q[a] - q[b]).norm();
-    const double tolerance = 2.0 * std::max(allowance(q[a]), allowance(q[b])) - 0.3;
-    const auto& v = sectors.vertices;
+    const double d = q.empty() ? 0.0 : (q[a] - q[b]).norm();
+    const double tolerance =
+        q.empty() ? 0.0 : 2.0 * std::max(allowance(q[a]), allowance(q[b])) - 0.3;
     for (std::size_t i = 0; i < v.size() && d > 0.3; ++i) {
       for (std::size_t j = 0; j < v.size(); ++j) {
         if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
         const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
-        const Eigen::Rotation2Dd R(rough.theta);
-        const Eigen::Vector2d t(rough.x, rough.y);
-        const bool lands = std::all_of(q.begin(), q.end(), [&](const Eigen::Vector2d& p) {
-          const Eigen::Vector2d w = R * p + t;
-          return std::any_of(v.begin(), v.end(), [&](const Eigen::Vector2d& u) {
-            return (u - w).norm() <= allowance(p);
-          });
-        });
+        const bool lands = std::all_of(
+            q.begin(), q.end(), [&](const Eigen::Vector2d& p) { return near_vertex(rough, p); });
         if (!lands) continue;
-        const Pose2 pose = polished(rough);
+        const Pose2 pose = polished(rough, false);
         const int sector = sectors.sector_at({pose.x, pose.y});
         if (sector < 0) continue;
         found.push_back({sector, pose, winner.deleted + 1, winner.matched, residual_at(pose), q});
@@ -482,11 +576,27 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
   // A distinct pose that explains the scan about as well: in another sector with the same
   // label (seed 000 §4.1), or in the same sector of a symmetric room (a rectangle's twin pose
   // turned by 180 deg).
+  // The alternatives are those poses, best first, each distinct from all before it.
+  const auto distinct = [](const Pose2& p, const Pose2& q) {
+    return std::hypot(p.x - q.x, p.y - q.y) > 0.3 ||
+           std::abs(normalize_angle(p.theta - q.theta)) > 0.26;
+  };
+  std::vector<const Candidate*> close;
   for (const auto& c : found) {
-    const bool distinct = std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) > 0.3 ||
-                          std::abs(normalize_angle(c.pose.theta - best->pose.theta)) > 0.26;
-    if (distinct && c.residual <= best->residual + o.ambiguity_residual_m) fix.ambiguous = true;
+    if (c.residual <= best->residual + o.ambiguity_residual_m) close.push_back(&c);
   }
+  std::stable_sort(close.begin(), close.end(), [](const Candidate* a, const Candidate* b) {
+    return a->residual < b->residual;
+  });
+  fix.alternatives.push_back({best->pose, best->residual});
+  for (const Candidate* c : close) {
+    if (std::all_of(fix.alternatives.begin(), fix.alternatives.end(),
+                    [&](const SectorFix::Alternative& x) { return distinct(x.pose, c->pose); })) {
+      fix.alternatives.push_back({c->pose, c->residual});
+    }
+  }
+  fix.ambiguous = fix.alternatives.size() > 1;
+  fix.covariance = pose_covariance(returns, edges, fix.pose);
   return fix;
 }
 

@@ -120,8 +120,9 @@ SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& o) {
   g.width = static_cast<int>(std::ceil((hi.x() - lo.x()) / o.cell_m));
   g.height = static_cast<int>(std::ceil((hi.y() - lo.y()) / o.cell_m));
   if (static_cast<double>(g.width) * g.height > 2e7) {
-    throw Error("compute_sectors: " + std::to_string(g.width) + " x " + std::to_string(g.height) +
-                " cells; use a larger cell_m");
+    throw Error(
+        "compute_sectors: " + std::to_string(g.width) + " x " + std::to_string(g.height) +
+        " cells; use a larger sampling cell (SectorOptions::cell_m, gridloc sectors --cell)");
   }
   const std::size_t cells = g.size();
   std::vector<char> free(cells, 0);

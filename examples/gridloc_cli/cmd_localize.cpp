@@ -28,8 +28,11 @@ void run(const LocalizeArgs& a) {
   if (a.repeat < 1) throw Error("--repeat must be >= 1");
   const EstimatorKind kind = parse_estimator_kind(a.estimator);
   if (kind != EstimatorKind::Correlation && a.inputs.scan.empty()) {
-    throw Error("--estimator " + a.estimator +
-                " needs a laser scan (--scan): ICP finds no tangents in a sonar ring's echoes");
+    const bool sectors =
+        kind == EstimatorKind::Sectors || kind == EstimatorKind::SectorsCorrelation;
+    throw Error("--estimator " + a.estimator + " needs a laser scan (--scan): " +
+                (sectors ? "a sonar ring's echoes give no label (seed 000 needs a 360 degree scan)"
+                         : "ICP finds no tangents in a sonar ring's echoes"));
   }
   if (kind == EstimatorKind::Icp && a.inputs.whole_map) {
     throw Error(

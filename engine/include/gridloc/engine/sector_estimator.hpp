@@ -24,11 +24,13 @@ struct SectorEstimate {
   SectorFix fix;
 };
 
-/// Estimate: pose = lattice_pose = the sector fix; verdict "ambiguous" when another sector
+/// Estimate: pose = lattice_pose = the sector fix; verdict "ambiguous" when a look-alike pose
 /// explains the scan as well (seed 000 §4.1), "not localized" when no sector label matches
-/// or the confidence is low; score = normalized_score = confidence; on_window_edge when the
-/// pose lies outside the window (the search itself ignores the window: it is global);
-/// covariance is not computed (zero).
+/// or the confidence is low; score = normalized_score = confidence; alternatives = the fix's
+/// (the winner and its look-alikes, scored like the confidence), second_score the first
+/// look-alike's (NaN without one); covariance = the fix's (Gauss-Newton on the readings'
+/// distances to their walls); on_window_edge when the pose lies outside the window (the
+/// search itself ignores the window: it is global).
 class SectorEstimator final : public Estimator {
  public:
   /// Computes the sectors (the costly part: once per map); throws gridloc::Error for bad

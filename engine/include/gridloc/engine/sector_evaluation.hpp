@@ -60,7 +60,9 @@ struct SectorEvalResult {
   int not_localized = 0;   ///< verdict "not localized"
   /// Failures reported as "localized": a wrong pose given as a fix, the worst outcome.
   int false_fixes = 0;
-  /// Trials whose true sector's label another sector shares up to a turn (seed 000 §4.1).
+  /// Trials whose true sector's label another sector shares up to a turn (seed 000 §4.1), or
+  /// equals itself turned part of a turn (a rectangle's): the look-alikes the labels show. A
+  /// look-alike whose sector's label came out otherwise is not counted.
   int ambiguous_label_trials = 0;
   /// Of those: answered "ambiguous" (detected), or a failure answered "localized" (answered
   /// wrongly); the rest are successes or "not localized".
@@ -79,7 +81,7 @@ struct SectorTrialRecord {
   int true_sector = -1;
   int found_sector = -1;
   bool ambiguous_label = false;
-  bool success = false;
+  bool success = false;  ///< within success_xy and success_theta, and not "not localized"
   double position_error_m = 0.0;
   double heading_error_deg = 0.0;
   Estimate estimate;
@@ -90,7 +92,7 @@ struct SectorEvalReport {
   std::vector<SectorEvalResult> results;  ///< one per estimator, in options order
   std::vector<SectorTrialRecord> records;
   std::vector<int> sectors_per_map;            ///< sector count of each map
-  std::vector<int> ambiguous_sectors_per_map;  ///< sectors with a shared label
+  std::vector<int> ambiguous_sectors_per_map;  ///< sectors with a shared or periodic label
 };
 
 /// A pose drawn uniformly in the free space of `map`, at least `clearance` from every edge,

@@ -33,6 +33,9 @@ struct ScanLabelOptions {
   /// A local maximum and minimum of a continuous run that differ by less than this (m) are
   /// noise and dropped in pairs, the flattest first.
   double prominence_m = 0.05;
+  /// Runs of at most this many beams without return, between two returns that continue each
+  /// other (no discontinuity), are dropouts and are bridged (0 = off).
+  int bridge_beams = 3;
 };
 
 /// A scan's label: one character per characteristic point, with the beam it was read at.
@@ -138,8 +141,12 @@ struct SectorFix {
   bool found = false;
   int sector = -1;
   Pose2 pose;
-  int deleted_pairs = 0;  ///< M m pairs the match left out of the sector's label
-  int matched_m = 0;      ///< M vertices the pose was fitted to
+  /// How loose the winning match was: the M m pairs seed 000's match left out of the labels
+  /// (0 to max_deleted_pairs); above max_deleted_pairs, a skeleton match (max_deleted_pairs +
+  /// 1 + the D c pairs it left out) or a look-alike placement (one more than the match it
+  /// started from).
+  int deleted_pairs = 0;
+  int matched_m = 0;  ///< located corners (M, and D for skeleton matches) the pose was fitted to
   /// Mean over the beams of |measured - expected range| at `pose`, each capped at
   /// SectorLocalizationOptions::residual_cap_m (m): how well the map explains the scan there.
   double residual_m = 0.0;
@@ -150,6 +157,17 @@ struct SectorFix {
   /// §4.1: another sector with the same label; or a symmetric room).
   bool ambiguous = false;
   std::string scan_label;
+  /// The winner and every pose more than 0.3 m or 15 deg from those before it whose residual
+  /// is within ambiguity_residual_m of the winner's: the look-alikes, best first.
+  struct Alternative {
+    Pose2 pose;
+    double residual_m = 0.0;
+  };
+  std::vector<Alternative> alternatives;
+  /// Covariance of (x, y, theta) of `pose`, Gauss-Newton on the readings' distances to their
+  /// walls (m^2, m rad, rad^2); infinite where the walls leave a direction free. Zero when
+  /// nothing was found.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 /// Seed 000 §3: the scan's label, matched against every sector's label up to a turn (and up
