@@ -162,7 +162,7 @@ SectorEvalReport run_sector_evaluation(const std::vector<SectorEvalMap>& maps,
       SearchWindow window;
       if (correlation) {
         window = correlation->global_window(obs);
-      } else {  // never the truth: a "not localized" answer sits at the window's centre
+      } else {  // the whole map; "not localized" answers sit at its centre
         const Eigen::Vector2d c = 0.5 * (lo + hi);
         window.center = {c.x(), c.y(), 0.0};
         window.half_xy = 0.5 * (hi - lo).maxCoeff();
