@@ -115,9 +115,10 @@ void run_sector_eval(const SectorEvalArgs& a) {
                 percent_or_dash(r.ambiguity_detection_rate).c_str());
   }
   std::printf(
-      "success: <= %.2f m and <= %.1f deg; sector id: the estimate names the true sector; "
-      "false: failures reported as localized; ambiguity det.: in sectors whose label another "
-      "shares, 'ambiguous' answers over those plus wrong 'localized' ones.\n",
+      "success: <= %.2f m and <= %.1f deg, not 'not localized'; sector id: the estimate names "
+      "the true sector; false: failures reported as localized; ambiguity det.: in sectors whose "
+      "label is shared or periodic, 'ambiguous' answers over those plus wrong 'localized' "
+      "ones.\n",
       o.success_xy, o.success_theta * 180.0 / 3.14159265358979);
 }
 
