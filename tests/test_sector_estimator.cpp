@@ -30,6 +30,17 @@ Observation scan_at(const PolygonMap& m, const Pose2& pose) {
   return Observation{{}, polygon_scan(m, pose, 360, 20.0)};
 }
 
+/// A round room of radius 2 m: no corner, no label to match.
+RangeScan round_room() {
+  RangeScan round;
+  round.max_range = 20.0;
+  for (int k = 0; k < 360; ++k) {
+    round.angles.push_back(deg2rad(k));
+    round.ranges.push_back(2.0);
+  }
+  return round;
+}
+
 TEST(SectorEstimator, AFixIsLocalizedWithACovariance) {
   const PolygonMap m = l_room();
   const SectorEstimator sectors(m);
@@ -73,14 +84,8 @@ TEST(SectorEstimator, LookAlikesAreAmbiguousWithTheirPoses) {
 
 TEST(SectorEstimator, NoMatchIsNotLocalizedAtTheWindowCentre) {
   const SectorEstimator sectors(l_room());
-  RangeScan round;  // a round room: no corner, no label to match
-  round.max_range = 20.0;
-  for (int k = 0; k < 360; ++k) {
-    round.angles.push_back(deg2rad(k));
-    round.ranges.push_back(2.0);
-  }
   const SearchWindow w = everywhere();
-  const Estimate e = sectors.estimate(Observation{{}, round}, w);
+  const Estimate e = sectors.estimate(Observation{{}, round_room()}, w);
   EXPECT_EQ(e.verdict, Verdict::NotLocalized);
   EXPECT_EQ(e.confidence, 0.0);
   EXPECT_EQ(e.pose.x, w.center.x);
@@ -127,13 +132,7 @@ TEST(SectorCorrelationEstimator, RefinesTheFixAndKeepsItsVerdict) {
   EXPECT_GT(r.estimate.stats.cells_scored, 0);
 
   // Nothing matched: no search, the fix's "not localized".
-  RangeScan round;
-  round.max_range = 20.0;
-  for (int k = 0; k < 360; ++k) {
-    round.angles.push_back(deg2rad(k));
-    round.ranges.push_back(2.0);
-  }
-  const SectorEstimate none = refined.locate(Observation{{}, round}, everywhere());
+  const SectorEstimate none = refined.locate(Observation{{}, round_room()}, everywhere());
   EXPECT_FALSE(none.fix.found);
   EXPECT_EQ(none.estimate.verdict, Verdict::NotLocalized);
   EXPECT_EQ(none.estimate.stats.cells_scored, 0);

@@ -147,38 +147,67 @@ std::vector<int> maxima_between(const std::string& label, int from, int to) {
   return out;
 }
 
-/// Gauss-Newton on the distances from the scan's points (robot frame) to their nearest map
-/// edge, with a shrinking gate: a pose from a few located vertices, made exact by every
-/// reading on the edges it explains.
-Pose2 polish(const std::vector<Eigen::Vector2d>& points,
-             const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges, Pose2 pose) {
-  for (const double gate : {0.3, 0.15, 0.08, 0.04, 0.04}) {
-    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    const Eigen::Rotation2Dd R(pose.theta);
-    const Eigen::Vector2d t(pose.x, pose.y);
-    int used = 0;
-    for (const auto& p : points) {
-      const Eigen::Vector2d rp = R * p, w = rp + t;
-      double best = gate;
-      Eigen::Vector2d normal;
-      double r = 0.0;
-      for (const auto& [a, b] : edges) {
-        const Eigen::Vector2d e = b - a;
-        const double u = (w - a).dot(e) / e.squaredNorm();
-        if (u < 0.0 || u > 1.0) continue;
-        const Eigen::Vector2d nrm = Eigen::Vector2d(-e.y(), e.x()).normalized();
-        const double d = nrm.dot(w - a);
-        if (std::abs(d) < best) best = std::abs(d), normal = nrm, r = d;
-      }
-      if (best >= gate) continue;
-      const Eigen::Vector3d J(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rp.y(), rp.x())));
-      H += J * J.transpose();
-      g += J * r;
-      ++used;
+/// A map edge ready for point-to-wall distances: its start, direction, 1 / length^2 and unit
+/// normal, computed once per localization rather than per point and pass.
+struct Wall {
+  Eigen::Vector2d a, e, normal;
+  double inv_len2;
+};
+
+std::vector<Wall> walls_of(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges) {
+  std::vector<Wall> out;
+  for (const auto& [a, b] : edges) {
+    const Eigen::Vector2d e = b - a;
+    out.push_back({a, e, Eigen::Vector2d(-e.y(), e.x()).normalized(), 1.0 / e.squaredNorm()});
+  }
+  return out;
+}
+
+/// The Gauss-Newton normal equations of the scan's points (robot frame) at `pose` against
+/// their nearest wall within `gate` (m): H, the gradient g, the sum of squared distances and
+/// the points used.
+struct NormalEquations {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double sum2 = 0.0;
+  int used = 0;
+};
+
+NormalEquations normal_equations(const std::vector<Eigen::Vector2d>& points,
+                                 const std::vector<Wall>& walls, const Pose2& pose, double gate) {
+  NormalEquations ne;
+  const Eigen::Rotation2Dd R(pose.theta);
+  const Eigen::Vector2d t(pose.x, pose.y);
+  for (const auto& p : points) {
+    const Eigen::Vector2d rp = R * p, w = rp + t;
+    double best = gate, r = 0.0;
+    const Wall* nearest = nullptr;
+    for (const Wall& wall : walls) {
+      const double u = (w - wall.a).dot(wall.e) * wall.inv_len2;
+      if (u < 0.0 || u > 1.0) continue;
+      const double d = wall.normal.dot(w - wall.a);
+      if (std::abs(d) < best) best = std::abs(d), r = d, nearest = &wall;
     }
-    if (used < 3) break;
-    const Eigen::Vector3d step = H.ldlt().solve(-g);
+    if (nearest == nullptr) continue;
+    const Eigen::Vector2d& n = nearest->normal;
+    const Eigen::Vector3d J(n.x(), n.y(), n.dot(Eigen::Vector2d(-rp.y(), rp.x())));
+    ne.H += J * J.transpose();
+    ne.g += J * r;
+    ne.sum2 += r * r;
+    ++ne.used;
+  }
+  return ne;
+}
+
+/// Gauss-Newton on the distances from the scan's points (robot frame) to their nearest map
+/// wall, with a shrinking gate: a pose from a few located vertices, made exact by every
+/// reading on the walls it explains.
+Pose2 polish(const std::vector<Eigen::Vector2d>& points, const std::vector<Wall>& walls,
+             Pose2 pose) {
+  for (const double gate : {0.3, 0.15, 0.08, 0.04, 0.04}) {
+    const NormalEquations ne = normal_equations(points, walls, pose, gate);
+    if (ne.used < 3) break;
+    const Eigen::Vector3d step = ne.H.ldlt().solve(-ne.g);
     if (!step.allFinite()) break;
     pose = {pose.x + step.x(), pose.y + step.y(), normalize_angle(pose.theta + step.z())};
   }
@@ -188,33 +217,12 @@ Pose2 polish(const std::vector<Eigen::Vector2d>& points,
 /// The Gauss-Newton covariance sigma^2 H^-1 of a pose fitted to the walls (polish()'s last
 /// gate): sigma^2 from the residuals, infinite variances where the walls leave a direction
 /// free (a corridor's axis).
-Eigen::Matrix3d pose_covariance(
-    const std::vector<Eigen::Vector2d>& points,
-    const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges, const Pose2& pose) {
-  constexpr double gate = 0.04;
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  double sum2 = 0.0;
-  int used = 0;
-  const Eigen::Rotation2Dd R(pose.theta);
-  const Eigen::Vector2d t(pose.x, pose.y);
-  for (const auto& p : points) {
-    const Eigen::Vector2d rp = R * p, w = rp + t;
-    double best = gate;
-    Eigen::Vector2d normal;
-    for (const auto& [a, b] : edges) {
-      const Eigen::Vector2d e = b - a;
-      const double u = (w - a).dot(e) / e.squaredNorm();
-      if (u < 0.0 || u > 1.0) continue;
-      const Eigen::Vector2d nrm = Eigen::Vector2d(-e.y(), e.x()).normalized();
-      const double d = nrm.dot(w - a);
-      if (std::abs(d) < best) best = std::abs(d), normal = nrm;
-    }
-    if (best >= gate) continue;
-    const Eigen::Vector3d J(normal.x(), normal.y(), normal.dot(Eigen::Vector2d(-rp.y(), rp.x())));
-    H += J * J.transpose();
-    sum2 += best * best;
-    ++used;
-  }
+Eigen::Matrix3d pose_covariance(const std::vector<Eigen::Vector2d>& points,
+                                const std::vector<Wall>& walls, const Pose2& pose) {
+  const NormalEquations ne = normal_equations(points, walls, pose, 0.04);
+  const Eigen::Matrix3d& H = ne.H;
+  const int used = ne.used;
+  const double sum2 = ne.sum2;
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Matrix3d cov = Eigen::Matrix3d::Constant(inf);
   if (used <= 3) return cov;
@@ -286,7 +294,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     const double r = std::min(scan.ranges[i], scan.max_range);
     pts[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
   }
-  const auto edges = polygon_edges(sectors.map);
+  const std::vector<Wall> walls = walls_of(polygon_edges(sectors.map));
   // How well the map explains the scan at a pose: each return's range against the range
   // cast along its beam on the polygons, the difference capped, averaged. Beams without
   // return do not count: real scanners drop beams on glass and dark surfaces.
@@ -303,8 +311,8 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
       const double a = pose.theta + scan.angles[i];
       const Eigen::Vector2d dir(std::cos(a), std::sin(a));
       double expected = scan.max_range;
-      for (const auto& [p, q] : edges) {
-        const Eigen::Vector2d e = q - p, w = p - origin;
+      for (const Wall& wall : walls) {
+        const Eigen::Vector2d &e = wall.e, w = wall.a - origin;
         const double den = cross2(dir, e);
         if (std::abs(den) < 1e-12) continue;  // parallel: not seen
         const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
@@ -380,7 +388,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     // polish, far below the bar. Look-alike placements rest on two corners only and can be
     // tens of centimetres off: they are always polished.
     const bool refuted = gated && range_residual(rough, 4) > o.rough_residual_m;
-    const Pose2 p = refuted ? rough : polish(returns, edges, rough);
+    const Pose2 p = refuted ? rough : polish(returns, walls, rough);
     polish_cache.emplace_back(rough, p);
     return polish_cache.back().second;
   };
@@ -596,7 +604,7 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     }
   }
   fix.ambiguous = fix.alternatives.size() > 1;
-  fix.covariance = pose_covariance(returns, edges, fix.pose);
+  fix.covariance = pose_covariance(returns, walls, fix.pose);
   return fix;
 }
 
