@@ -22,6 +22,10 @@ std::string to_string(EstimatorKind kind) {
   return "?";
 }
 
+bool is_sector_estimator(EstimatorKind kind) {
+  return kind == EstimatorKind::Sectors || kind == EstimatorKind::SectorsCorrelation;
+}
+
 EstimatorKind parse_estimator_kind(const std::string& name) {
   for (EstimatorKind k :
        {EstimatorKind::Correlation, EstimatorKind::Icp, EstimatorKind::CorrelationIcp,

@@ -168,7 +168,7 @@ EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& rin
     throw Error("evaluation: the echo filter is for sonar readings, not the laser protocol");
   }
   for (const auto& c : options.configurations) {
-    if (c.estimator == EstimatorKind::Sectors || c.estimator == EstimatorKind::SectorsCorrelation) {
+    if (is_sector_estimator(c.estimator)) {
       throw Error("evaluation: the " + to_string(c.estimator) +
                   " estimator needs polygon maps and global 360 degree scans: the sector "
                   "protocol (run_sector_evaluation; gridloc eval with polygon --maps)");

@@ -31,7 +31,7 @@ Pose2 relative_pose(const Pose2& a, const Pose2& b) {
 
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& o, bool* converged) {
-  if (o.matcher == EstimatorKind::Sectors || o.matcher == EstimatorKind::SectorsCorrelation) {
+  if (is_sector_estimator(o.matcher)) {
     throw Error("relations: the " + to_string(o.matcher) +
                 " estimator localizes on a polygon map, it does not match two scans; use icp, "
                 "correlation or correlation+icp");

@@ -50,10 +50,6 @@ bool label_ambiguous(const Sector& s) {
   return false;
 }
 
-bool is_sector_kind(EstimatorKind k) {
-  return k == EstimatorKind::Sectors || k == EstimatorKind::SectorsCorrelation;
-}
-
 void check(const SectorEvalOptions& o, std::size_t maps) {
   if (o.trials < 1) throw Error("sector evaluation: trials must be >= 1");
   if (maps == 0) throw Error("sector evaluation: no polygon map");
@@ -172,7 +168,7 @@ SectorEvalReport run_sector_evaluation(const std::vector<SectorEvalMap>& maps,
         const EstimatorKind kind = options.estimators[k];
         Estimate e;
         int found_sector = -1;
-        if (is_sector_kind(kind)) {
+        if (is_sector_estimator(kind)) {
           SectorEstimate se = kind == EstimatorKind::Sectors ? sectors->locate(obs, window)
                                                              : refined->locate(obs, window);
           e = std::move(se.estimate);

@@ -80,10 +80,6 @@ std::string map_file(const std::string& name) {
              : name;
 }
 
-bool is_sector_kind(EstimatorKind k) {
-  return k == EstimatorKind::Sectors || k == EstimatorKind::SectorsCorrelation;
-}
-
 /// The sector protocol: polygon maps, 360-degree scans, no prior.
 void run_sectors(const EvalArgs& a, const std::vector<std::string>& files) {
   if (a.noisy || a.echo_filter) {
@@ -119,7 +115,7 @@ void run(const EvalArgs& a) {
   // Polygon maps or a sector estimator: the sector protocol.
   bool sectors = false;
   for (const auto& name : split(a.estimators))
-    sectors |= is_sector_kind(parse_estimator_kind(name));
+    sectors |= is_sector_estimator(parse_estimator_kind(name));
   std::vector<std::string> files;
   for (const auto& name : split(sectors && !a.maps_given ? kPolygonMaps : a.maps)) {
     files.push_back(map_file(name));

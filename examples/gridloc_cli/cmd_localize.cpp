@@ -28,8 +28,7 @@ void run(const LocalizeArgs& a) {
   if (a.repeat < 1) throw Error("--repeat must be >= 1");
   const EstimatorKind kind = parse_estimator_kind(a.estimator);
   if (kind != EstimatorKind::Correlation && a.inputs.scan.empty()) {
-    const bool sectors =
-        kind == EstimatorKind::Sectors || kind == EstimatorKind::SectorsCorrelation;
+    const bool sectors = is_sector_estimator(kind);
     throw Error("--estimator " + a.estimator + " needs a laser scan (--scan): " +
                 (sectors ? "a sonar ring's echoes give no label (seed 000 needs a 360 degree scan)"
                          : "ICP finds no tangents in a sonar ring's echoes"));
@@ -45,7 +44,7 @@ void run(const LocalizeArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const CorrelationEstimator> correlation = std::move(l.estimator);
   std::unique_ptr<Estimator> chosen;
-  if (kind == EstimatorKind::Sectors || kind == EstimatorKind::SectorsCorrelation) {
+  if (is_sector_estimator(kind)) {
     // Global: the window (--prior or --global) only sets on_window_edge.
     if (!is_polygon_map_file(a.inputs.map)) {
       throw Error("--estimator " + a.estimator +

@@ -34,6 +34,9 @@ enum class EstimatorKind {
 
 /// "correlation", "icp", "correlation+icp", "sectors" or "sectors+correlation".
 std::string to_string(EstimatorKind kind);
+/// Whether the kind localizes on a polygon map by visibility sectors (sectors,
+/// sectors+correlation): global, from a 360 degree scan.
+bool is_sector_estimator(EstimatorKind kind);
 /// The kind to_string() names; gridloc::Error listing the choices otherwise.
 EstimatorKind parse_estimator_kind(const std::string& name);
 
