@@ -53,7 +53,7 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
-#include "gridloc/engine/icp_estimator.hpp"
+#include "gridloc/engine/icp/estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/range_scan.hpp"

@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
-#include "gridloc/engine/hallway_trials.hpp"
-#include "gridloc/engine/relation_eval.hpp"
-#include "gridloc/engine/robust_icp.hpp"
+#include "gridloc/engine/evaluation/hallway_trials.hpp"
+#include "gridloc/engine/evaluation/relations.hpp"
+#include "gridloc/engine/icp/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 #include "gridloc/sensors/scan_disturbances.hpp"
 #include "gridloc/sensors/segment_world.hpp"
@@ -44,7 +44,7 @@ using Points = std::vector<Eigen::Vector2d>;
 const Pose2 kMotion{0.5, -0.2, deg2rad(20.0)};  // seed 004 §4
 
 /// The hallway's scan at `pose`: 720 beams 0.5 deg apart from -180 deg, 8 m max range (as
-/// tests/test_robust_icp.cpp's scan_at), with Gaussian noise of `noise_m` (seeded) added to
+/// tests/icp/test_robust_icp.cpp's scan_at), with Gaussian noise of `noise_m` (seeded) added to
 /// every return's range, along its beam.
 RangeScan hallway_scan(const Pose2& pose, double noise_m, unsigned seed) {
   static const std::vector<WallSegment> walls = seed004_hallway();

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "bench_scenarios.hpp"
-#include "gridloc/engine/correlation_search.hpp"
-#include "gridloc/engine/fixed_point_kernel.hpp"
+#include "gridloc/engine/correlation/fixed_point_kernel.hpp"
+#include "gridloc/engine/correlation/search.hpp"
 #include "gridloc/grids/evidence.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
 #include "scan_sim.hpp"

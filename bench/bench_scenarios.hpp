@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
 
 namespace gridloc::bench {
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "gridloc/engine/sector_estimator.hpp"
-#include "gridloc/engine/sector_evaluation.hpp"
+#include "gridloc/engine/evaluation/sector_protocol.hpp"
+#include "gridloc/engine/sectors/estimator.hpp"
 #include "gridloc/sensors/scan_disturbances.hpp"
 
 namespace gridloc::bench {

@@ -2,7 +2,7 @@
 # find_package(gridloc).
 include(CMakePackageConfigHelpers)
 
-install(TARGETS gridloc_grids gridloc_sensors gridloc_engine EXPORT gridlocTargets
+install(TARGETS gridloc_grids gridloc_sensors gridloc_engine gridloc_evaluation EXPORT gridlocTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(module grids sensors engine)

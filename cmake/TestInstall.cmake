@@ -50,8 +50,11 @@ set(expected
     ${INCLUDEDIR}/gridloc/sensors/sonar_ring.hpp
     ${INCLUDEDIR}/gridloc/sensors/sonar_sim.hpp
     ${INCLUDEDIR}/gridloc/sensors/rng.hpp
-    ${INCLUDEDIR}/gridloc/engine/correlation_estimator.hpp
-    ${INCLUDEDIR}/gridloc/engine/evaluation.hpp
+    ${INCLUDEDIR}/gridloc/engine/estimator.hpp
+    ${INCLUDEDIR}/gridloc/engine/correlation/estimator.hpp
+    ${INCLUDEDIR}/gridloc/engine/icp/estimator.hpp
+    ${INCLUDEDIR}/gridloc/engine/sectors/estimator.hpp
+    ${INCLUDEDIR}/gridloc/engine/evaluation/sonar_protocol.hpp
     ${LIBDIR}/cmake/gridloc/gridlocConfig.cmake
     ${LIBDIR}/cmake/gridloc/gridlocConfigVersion.cmake
     ${LIBDIR}/cmake/gridloc/gridlocTargets.cmake
@@ -68,7 +71,7 @@ foreach(file IN LISTS expected)
     list(APPEND missing ${file})
   endif()
 endforeach()
-foreach(lib grids sensors engine)
+foreach(lib grids sensors engine evaluation)
   file(GLOB found ${prefix}/${LIBDIR}/*gridloc_${lib}.*)
   if(NOT found)
     list(APPEND missing "${LIBDIR}/<lib>gridloc_${lib}.<ext>")

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "gridloc/engine/evaluation.hpp"
+#include "gridloc/engine/evaluation/sonar_protocol.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "options.hpp"

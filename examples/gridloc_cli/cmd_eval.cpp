@@ -12,7 +12,7 @@
 
 #include "commands.hpp"
 #include "eval_sectors.hpp"
-#include "gridloc/engine/evaluation.hpp"
+#include "gridloc/engine/evaluation/sonar_protocol.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gridloc/engine/hallway_trials.hpp"
+#include "gridloc/engine/evaluation/hallway_trials.hpp"
 
 namespace gridloc::cli {
 namespace {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/range_scan.hpp"

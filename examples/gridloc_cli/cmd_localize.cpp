@@ -5,10 +5,10 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "gridloc/engine/correlation_estimator.hpp"
-#include "gridloc/engine/icp_estimator.hpp"
-#include "gridloc/engine/sector_estimator.hpp"
-#include "gridloc/engine/sector_evaluation.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/evaluation/sector_protocol.hpp"
+#include "gridloc/engine/icp/estimator.hpp"
+#include "gridloc/engine/sectors/estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "localization_args.hpp"

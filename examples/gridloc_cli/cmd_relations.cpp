@@ -6,7 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gridloc/engine/relation_eval.hpp"
+#include "gridloc/engine/evaluation/relations.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc::cli {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "gridloc/engine/visibility_sectors.hpp"
+#include "gridloc/engine/sectors/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "heatmap_plot.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gridloc/engine/sector_evaluation.hpp"
+#include "gridloc/engine/evaluation/sector_protocol.hpp"
 
 namespace gridloc::cli {
 

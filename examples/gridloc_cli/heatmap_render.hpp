@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
 
 namespace gridloc::cli {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {

@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "gridloc/engine/correlation_estimator.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/octomap_io.hpp"
 
 namespace gridloc::cli {

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "gridloc/engine/visibility_sectors.hpp"
+#include "gridloc/engine/sectors/visibility_sectors.hpp"
 
 namespace gridloc::cli {
 

@@ -10,8 +10,8 @@
 #include <numbers>
 #include <vector>
 
-#include "gridloc/engine/correlation_estimator.hpp"
-#include "gridloc/engine/evaluation.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/evaluation/sonar_protocol.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"

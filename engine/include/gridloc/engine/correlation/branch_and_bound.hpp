@@ -1,0 +1,192 @@
+#pragma once
+/// Exact branch and bound over translations and headings (DESIGN.md, "Global grid"): blocks
+/// of 2^h x 2^h translations, and for rigid scans intervals of 2^a headings, are bounded from
+/// above with max / min pooled global grids and pruned against the best pose found so far.
+/// Returns what search_exhaustive returns, bit for bit, while scoring far fewer poses.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "gridloc/engine/correlation/search.hpp"
+#include "gridloc/grids/grid.hpp"
+
+namespace gridloc {
+
+/// Bound grids of one PaddedGrid, built once. At level h (blocks of 2^h x 2^h translations),
+/// arc_max[h] is the PaddedGrid's arc_view max-pooled and grid_min[h] its grid min-pooled,
+/// cell (x, y) covering [x, x + 2^h) x [y, y + 2^h); both keep the padded geometry, so a
+/// PlacedLocalGrid's offsets apply unchanged. Level 0 is the PaddedGrid itself and is not
+/// copied: arc_max[0] and grid_min[0] are empty. A plain value, safe to copy or move.
+struct BoundPyramid {
+  std::vector<EvidenceGrid> arc_max;   ///< [h] for h = 1..depth; [0] empty
+  std::vector<EvidenceGrid> grid_min;  ///< [h] for h = 1..depth; [0] empty
+  int pad = 0;                         ///< the source PaddedGrid's pad, width and height:
+  int width = 0;                       ///< checked against the grid searched
+  int height = 0;
+  float arc_max_all = 0.0f;   ///< max of the arc view and min of the grid over the whole
+  float grid_min_all = 0.0f;  ///< padded grid: the bound of a window wider than any level
+  float abs_max = 0.0f;       ///< max |value| of the grid and arc view (rounding slack)
+  /// When every value of the grid is -1, 0 or 1 (evidence grids): levels 0..depth again as
+  /// int8 ([0] = the arc view and the grid themselves), which the bounds read: the same
+  /// values from 4x less memory, so the same sums with fewer cache misses, and from the
+  /// fixed-point kernel's integer lanes. Each ends in kGatherSlack bytes. Empty otherwise.
+  std::vector<std::vector<std::int8_t>> arc_max8;
+  std::vector<std::vector<std::int8_t>> grid_min8;
+  bool ternary() const { return !arc_max8.empty(); }
+
+  /// The top level h (0 when only level 0 exists).
+  int depth() const { return static_cast<int>(arc_max.size()) - 1; }
+};
+
+/// Builds levels 1..depth of `global`'s bound pyramid (depth >= 0; throws gridloc::Error
+/// otherwise), O(padded cells) per level. Needs no padding beyond what score() needs
+/// (pad >= the local grids' extent), whatever the depth: the search only makes blocks that
+/// start inside the lattice, and the pooled windows are clipped at the padded grid's edge.
+BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth);
+
+/// The smallest depth whose top-level blocks cover the lattice's translations in one block
+/// per heading: ceil(log2(max(columns, rows))); a deeper pyramid adds nothing for it.
+int bound_depth_for(const Lattice& lattice);
+
+/// Upper bound on score(global, local, x, y) for every (x, y) in [ix, ix + 2^h) x
+/// [iy, iy + 2^h) that lies in the map, at level 1 <= h <= pyramid.depth(); (ix, iy) must
+/// lie in the map. Computed exactly as score() computes a score, with pooled values: each
+/// term is then >= the matching score term after float rounding, and so is each partial sum
+/// after double rounding (rounding is monotone), so the bound holds bit for bit, no epsilon.
+inline double block_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& local, int h, int ix,
+                          int iy) {
+  const auto& arc_grid = pyramid.arc_max[static_cast<std::size_t>(h)];
+  const std::ptrdiff_t origin =
+      static_cast<std::ptrdiff_t>(iy + pyramid.pad) * arc_grid.width() + (ix + pyramid.pad);
+  const auto level = static_cast<std::size_t>(h);
+  if (pyramid.ternary()) {
+    return correlate(pyramid.arc_max8[level].data() + origin,
+                     pyramid.grid_min8[level].data() + origin, local);
+  }
+  return correlate(arc_grid.cells.data() + origin, pyramid.grid_min[level].cells.data() + origin,
+                   local);
+}
+
+/// Poses left out of a search: those within `radius_cells` (Euclidean, in cells) and
+/// `radius_headings` (heading indices) of `center`. Used to find the best pose *distinct*
+/// from a winner, exactly.
+struct Exclusion {
+  LatticePose center;
+  double radius_cells = 0.0;
+  int radius_headings = 0;
+
+  bool contains(int ix, int iy, int it) const {
+    return std::abs(it - center.it) <= radius_headings &&
+           std::hypot(ix - center.ix, iy - center.iy) <= radius_cells;
+  }
+  /// True when every translation of [x0, x1] x [y0, y1] at every heading of [it0, it1] is
+  /// excluded: the heading and disc tests are independent, so the interval's two ends and
+  /// the rectangle's four corners (a disc holds a rectangle when it holds its corners) do.
+  bool contains_block(int it0, int it1, int x0, int y0, int x1, int y1) const {
+    return contains(x0, y0, it0) && contains(x0, y0, it1) && contains(x1, y0, it0) &&
+           contains(x0, y1, it0) && contains(x1, y1, it0);
+  }
+};
+
+/// The local grids of a lattice's headings, made on first use and kept, so that a search
+/// builds only the headings it opens and several searches share them. Thread-safe. With
+/// rigid points (SearchLevel::points) it also keeps, per heading, every point's cell, which
+/// the heading-interval bounds read.
+class HeadingGrids {
+ public:
+  /// Throws gridloc::Error when `finest` has no grid, or its points reach beyond the padding.
+  HeadingGrids(const Lattice& lattice, const SearchLevel& finest);
+
+  /// Heading it's local grid placed on the level's grid; throws gridloc::Error when it
+  /// reaches beyond the padding.
+  const PlacedLocalGrid& placed(int it) const;
+  /// Heading it's rigid points, not merged: beam ends and free samples apart, each sorted by
+  /// offset (requires points()).
+  struct PointCells {
+    std::vector<std::ptrdiff_t> hit_offset, free_offset;  ///< in the padded grid
+    std::vector<int> hit_x, hit_y, free_x, free_y;        ///< cells from the robot's cell
+  };
+  const PointCells& point_cells(int it) const;
+  /// Makes every heading now (in parallel with the level's threads).
+  void make_all() const;
+
+  const Lattice& lattice() const { return lattice_; }
+  const SearchLevel& level() const { return level_; }
+  const ScanPoints* points() const { return level_.points; }
+
+ private:
+  struct Entry {
+    std::once_flag placed_once, cells_once;
+    PlacedLocalGrid placed;
+    PointCells cells;
+  };
+  Lattice lattice_;
+  SearchLevel level_;
+  std::unique_ptr<Entry[]> entries_;
+};
+
+struct BranchAndBoundOptions {
+  /// Poses never candidates (those in any of the zones): the result is the exhaustive best
+  /// among the others. Zones found one after another give the top distinct hypotheses.
+  std::vector<Exclusion> exclude;
+  /// A lattice pose with its exact score, known before the search (e.g. the best pose outside
+  /// `exclude` that an earlier search scored): prunes from the start. It must lie outside
+  /// `exclude`; the result is it when nothing beats it.
+  std::optional<LatticePose> incumbent;
+  /// Anytime search: stop after about this many milliseconds (0: no limit) and return the
+  /// best pose so far, with SearchResult::proven_optimal false when open blocks could still
+  /// hold a better one, and SearchResult::upper_bound the most any pose could score.
+  double budget_ms = 0.0;
+  /// Bound intervals of headings too when the level has rigid points (see below). Exact
+  /// either way; on the apartment peer case it prunes more headings unopened but its bounds
+  /// are looser, so it was slower than one node per heading (bench/RESULTS.md).
+  bool heading_intervals = false;
+  /// Threads, each making the top-level nodes of its share of the headings and searching them
+  /// best first in its own heap, pruning with the shared incumbent and stealing from the
+  /// others' heaps when its own runs dry. The result does not depend on it (exact); the
+  /// counters and `scored` do.
+  int threads = 1;
+};
+
+/// Exact branch-and-bound search over the whole lattice on the finest level: the same best
+/// pose and score as search_exhaustive(lattice, finest), ties to the lowest (it, iy, ix), unless
+/// a budget stops it. The grids must be of `lattice`; `pyramid` must come from the level's
+/// grid (checked by geometry only); the lattice must be non-empty and inside the map, and
+/// every local grid's extent <= pad (gridloc::Error otherwise).
+///
+/// Nodes are blocks of 2^h x 2^h translations times one heading, bounded with the heading's
+/// local grid on pooled level h (block_bound), or, when the level has rigid points, times an
+/// interval of 2^a headings: rotating the robot within the interval moves a point by at most
+/// w = floor(max |p| * (angle to the interval's middle heading) / resolution) + 1 cells per
+/// axis from its cell at the middle heading, so each point's term is bounded by pooling over
+/// the block widened by w on every side (the level whose blocks cover 2^h + 2w cells, read
+/// w cells before the block): + max(arc view, 0) for a beam end, weight * min(grid, 0) for
+/// a free sample (beam ends merged in one cell and free samples under an end count at most
+/// that). The free samples' weights must all be equal (scan_points makes them so). These
+/// sums differ in structure from score()'s, so they get a rounding slack of (points + 4) * 2^-24 *
+/// sum |weight| * max |grid|, which only loosens. Any depth is exact; translations start at
+/// min(pyramid.depth(), bound_depth_for(lattice)), headings at the widest interval whose widening
+/// stays within half that block. Intervals are split while their widening is at least half the
+/// block, blocks otherwise.
+///
+/// Best first (highest bound, then lowest first pose; one heap per thread); a node is dropped
+/// when its bound is below the best score so far, or equal to it while it holds no pose of
+/// lower index; the search ends when no heap's best node can win. Result: `scored` holds
+/// only the leaf poses scored exactly (a partial score volume); poses_scored counts them;
+/// cells_scored counts local cells or points multiplied by leaf scores and by bounds alike.
+/// An empty result (every pose excluded, no incumbent) has poses_scored == 0.
+SearchResult search_branch_and_bound(const Lattice& lattice, const HeadingGrids& grids,
+                                     const BoundPyramid& pyramid,
+                                     const BranchAndBoundOptions& options = {});
+
+/// The same search, making its own HeadingGrids (with `exclude` only).
+SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& finest,
+                                     const BoundPyramid& pyramid,
+                                     const std::optional<Exclusion>& exclude = std::nullopt);
+
+}  // namespace gridloc

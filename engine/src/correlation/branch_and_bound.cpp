@@ -1,0 +1,598 @@
+#include "gridloc/engine/correlation/branch_and_bound.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <tuple>
+
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/pooling.hpp"
+
+// Exactness rests on IEEE rounding being monotone and on the bound being summed exactly as
+// score() sums (see block_bound); reassociating compilers would break both.
+#if defined(__FAST_MATH__)
+#error "branch_and_bound.cpp needs IEEE floating point: build without -ffast-math"
+#endif
+
+namespace gridloc {
+namespace {
+
+constexpr int kMaxDepth = 30;  // 2^h must fit an int
+
+/// A block of 2^h x 2^h translations starting at (ix, iy), times the 2^a headings starting at
+/// it (clipped to the lattice). Its first pose in lattice order is (it, iy, ix): every other
+/// pose has a larger heading, or row, or the same row and a larger column.
+struct Node {
+  double bound = 0.0;
+  int it = 0, iy = 0, ix = 0, h = 0, a = 0;
+};
+
+bool index_less(int it, int iy, int ix, const LatticePose& b) {
+  return std::tie(it, iy, ix) < std::tie(b.it, b.iy, b.ix);
+}
+
+/// Visit order: higher bound first, then lower first pose.
+bool visit_before(const Node& a, const Node& b) {
+  if (a.bound != b.bound) return a.bound > b.bound;
+  return std::tie(a.it, a.iy, a.ix) < std::tie(b.it, b.iy, b.ix);
+}
+
+void validate(const Lattice& lattice, const PaddedGrid& g, const BoundPyramid& pyramid) {
+  auto fail = [](const std::string& what) { throw Error("branch and bound: " + what); };
+  if (lattice.headings < 1) {
+    fail("lattice headings = " + std::to_string(lattice.headings) + " must be >= 1");
+  }
+  if (lattice.x0 < 0 || lattice.x0 > lattice.x1 || lattice.x1 >= g.width || lattice.y0 < 0 ||
+      lattice.y0 > lattice.y1 || lattice.y1 >= g.height) {
+    std::ostringstream m;
+    m << "lattice x [" << lattice.x0 << ", " << lattice.x1 << "] y [" << lattice.y0 << ", "
+      << lattice.y1 << "] must be non-empty and inside the " << g.width << " x " << g.height
+      << " map";
+    fail(m.str());
+  }
+  if (pyramid.depth() < 0 || pyramid.grid_min.size() != pyramid.arc_max.size() ||
+      pyramid.pad != g.pad || pyramid.width != g.width || pyramid.height != g.height) {
+    std::ostringstream m;
+    m << "the bound pyramid (pad " << pyramid.pad << ", map " << pyramid.width << " x "
+      << pyramid.height << ") was not built from the searched grid (pad " << g.pad << ", map "
+      << g.width << " x " << g.height << ")";
+    fail(m.str());
+  }
+}
+
+}  // namespace
+
+BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
+  if (depth < 0 || depth > kMaxDepth) {
+    throw Error("bound pyramid: depth = " + std::to_string(depth) + " must lie in [0, " +
+                std::to_string(kMaxDepth) + "]");
+  }
+  if (global.arc_view.size() != global.grid.cells.size()) {
+    throw Error("bound pyramid: the padded grid's arc_view does not match its grid");
+  }
+  BoundPyramid p;
+  p.pad = global.pad;
+  p.width = global.width;
+  p.height = global.height;
+  p.arc_max.resize(static_cast<std::size_t>(depth) + 1);
+  p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
+  EvidenceGrid arc = global.grid;  // arc_view with the padded geometry
+  arc.cells = global.arc_view;
+  for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
+    const auto l = static_cast<std::size_t>(h);
+    const int half = 1 << (h - 1);
+    p.arc_max[l] = max_pool_doubled(h == 1 ? arc : p.arc_max[l - 1], half);
+    p.grid_min[l] = min_pool_doubled(h == 1 ? global.grid : p.grid_min[l - 1], half);
+  }
+  if (!arc.cells.empty()) {
+    p.arc_max_all = *std::max_element(arc.cells.begin(), arc.cells.end());
+    p.grid_min_all = *std::min_element(global.grid.cells.begin(), global.grid.cells.end());
+  }
+  for (float v : arc.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  for (float v : global.grid.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  auto is_ternary = [](const EvidenceGrid& g) {
+    return std::all_of(g.cells.begin(), g.cells.end(),
+                       [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; });
+  };
+  if (is_ternary(arc) && is_ternary(global.grid)) {  // pooling keeps values: levels are too
+    auto to_int8 = [](const EvidenceGrid& g) { return to_int8_with_slack(g.cells); };
+    p.arc_max8.push_back(to_int8(arc));
+    p.grid_min8.push_back(to_int8(global.grid));
+    for (int h = 1; h <= depth; ++h) {
+      p.arc_max8.push_back(to_int8(p.arc_max[static_cast<std::size_t>(h)]));
+      p.grid_min8.push_back(to_int8(p.grid_min[static_cast<std::size_t>(h)]));
+    }
+  }
+  return p;
+}
+
+int bound_depth_for(const Lattice& lattice) {
+  const int n = std::max(lattice.x1 - lattice.x0 + 1, lattice.y1 - lattice.y0 + 1);
+  int depth = 0;
+  while (depth < kMaxDepth && (1 << depth) < n) ++depth;
+  return depth;
+}
+
+HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
+    : lattice_(lattice),
+      level_(finest),
+      entries_(std::make_unique<Entry[]>(static_cast<std::size_t>(std::max(lattice.headings, 0)))) {
+  if (finest.global == nullptr) throw Error("branch and bound: the search level has no grid");
+  if (finest.points != nullptr) {
+    const double res = finest.global->grid.geometry.resolution;
+    if (finest.points->max_norm / res + 1.0 > finest.global->pad) {
+      std::ostringstream m;
+      m << "branch and bound: the scan's points reach " << finest.points->max_norm
+        << " m, beyond the padding of " << finest.global->pad << " cells";
+      throw Error(m.str());
+    }
+  }
+}
+
+const PlacedLocalGrid& HeadingGrids::placed(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.placed_once, [&] {
+    if (level_.points != nullptr) {  // make_local's grid, without the detour (tested equal)
+      e.placed = place_points(*level_.points, lattice_.theta(it), *level_.global);
+      return;
+    }
+    const SparseLocalGrid local = level_.make_local(lattice_.theta(it), Eigen::Vector2d::Zero());
+    const int extent = local.size() > 0 ? local.extent() : 0;
+    if (extent > level_.global->pad) {
+      throw Error("branch and bound: local grid extent " + std::to_string(extent) +
+                  " cells (heading " + std::to_string(it) + ") exceeds the padding " +
+                  std::to_string(level_.global->pad));
+    }
+    e.placed = place(local, *level_.global);
+  });
+  return e.placed;
+}
+
+const HeadingGrids::PointCells& HeadingGrids::point_cells(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.cells_once, [&] {
+    const ScanPoints& p = *level_.points;
+    const double theta = lattice_.theta(it);
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double inv = 1.0 / level_.global->grid.geometry.resolution;
+    const std::ptrdiff_t width = level_.global->grid.width();
+    // Sorted by offset: a bound then walks the grid's rows in order.
+    std::vector<std::pair<std::ptrdiff_t, Eigen::Vector2i>> hits, frees;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Eigen::Vector2i cell = point_cell(p, k, c, s, inv);
+      (k < p.hit_count ? hits : frees).push_back({cell.y() * width + cell.x(), cell});
+    }
+    auto fill = [](auto& items, auto& offset, auto& xs, auto& ys) {
+      std::sort(items.begin(), items.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [o, cell] : items) {
+        offset.push_back(o);
+        xs.push_back(cell.x());
+        ys.push_back(cell.y());
+      }
+    };
+    fill(hits, e.cells.hit_offset, e.cells.hit_x, e.cells.hit_y);
+    fill(frees, e.cells.free_offset, e.cells.free_x, e.cells.free_y);
+  });
+  return e.cells;
+}
+
+void HeadingGrids::make_all() const {
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic) num_threads(level_.threads) if (level_.threads > 1)
+  for (int it = 0; it < lattice_.headings; ++it) {
+    try {
+      placed(it);
+    } catch (...) {
+#pragma omp critical(gridloc_make_all)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+namespace {
+
+/// One branch-and-bound search: per-thread best-first heaps, the shared incumbent, the bounds.
+class Search {
+ public:
+  Search(const Lattice& lattice, const HeadingGrids& grids, const BoundPyramid& pyramid,
+         const BranchAndBoundOptions& options)
+      : lat_(lattice), grids_(grids), pyr_(pyramid), opt_(options), g_(*grids.level().global) {
+    points_ = options.heading_intervals ? grids.points() : nullptr;
+    inv_res_ = 1.0 / g_.grid.geometry.resolution;
+    width_ = g_.grid.width();
+    arc_levels_.push_back(g_.arc_view.data());
+    min_levels_.push_back(g_.grid.cells.data());
+    for (int h = 1; h <= pyr_.depth(); ++h) {
+      arc_levels_.push_back(pyr_.arc_max[static_cast<std::size_t>(h)].cells.data());
+      min_levels_.push_back(pyr_.grid_min[static_cast<std::size_t>(h)].cells.data());
+    }
+    for (std::size_t h = 0; h < pyr_.arc_max8.size(); ++h) {
+      arc8_levels_.push_back(pyr_.arc_max8[h].data());
+      min8_levels_.push_back(pyr_.grid_min8[h].data());
+    }
+    if (points_ != nullptr) {
+      double mass = 0.0;
+      for (float w : points_->weight) mass += std::abs(static_cast<double>(w));
+      slack_ = (static_cast<double>(points_->size()) + 4.0) * std::ldexp(1.0, -24) * mass *
+               std::max(1.0f, pyr_.abs_max);
+    }
+    if (opt_.incumbent) {
+      best_ = *opt_.incumbent;
+      found_ = true;
+      best_score_.store(best_.score);
+    }
+    if (opt_.budget_ms > 0.0) {
+      deadline_ = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double, std::milli>(opt_.budget_ms));
+    }
+  }
+
+  SearchResult run() {
+    const int top = std::min(pyr_.depth(), bound_depth_for(lat_));
+    if (top == 0 && points_ == nullptr) {  // no bound levels: the exhaustive search
+      Worker w(*this);
+      for (int it = 0; it < lat_.headings; ++it) {
+        for (int iy = lat_.y0; iy <= lat_.y1; ++iy) {
+          for (int ix = lat_.x0; ix <= lat_.x1; ++ix) w.score_leaf(it, iy, ix);
+        }
+      }
+      w.merge();
+      return finish(false);
+    }
+    // Heading intervals at the top: the widest whose widening stays within half a block.
+    int a_top = 0;
+    if (points_ != nullptr && opt_.heading_intervals) {
+      while ((1 << a_top) < lat_.headings &&
+             2 * widening(points_->max_norm, half_span(a_top + 1)) <= (1 << top)) {
+        ++a_top;
+      }
+    }
+    // Each thread makes the top nodes of its share of the headings (building their grids in
+    // parallel) into its own best-first heap, then searches, sharing the incumbent and
+    // stealing from the others' heaps when its own runs dry.
+    const auto threads = static_cast<std::size_t>(std::max(1, opt_.threads));
+    heaps_.assign(threads, {});
+    for (std::size_t t = 0; t < threads; ++t) heap_mu_.push_back(std::make_unique<std::mutex>());
+    roots_pending_ = static_cast<int>(threads);
+    const int stride = 1 << a_top;
+    auto run_thread = [this, top, a_top, stride, threads](std::size_t t) {
+      try {
+        Worker w(*this);
+        const int side = 1 << top;
+        for (int it = static_cast<int>(t) * stride; it < lat_.headings;
+             it += static_cast<int>(threads) * stride) {
+          for (int iy = lat_.y0; iy <= lat_.y1; iy += side) {
+            for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
+          }
+        }
+        heaps_[t] = std::move(w.children);
+        std::make_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+        w.merge();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mu_);
+        if (!error_) error_ = std::current_exception();
+        stopped_ = true;
+      }
+      // Every heap must hold its top nodes before anyone may conclude the search is over.
+      --roots_pending_;
+      while (roots_pending_.load() > 0) std::this_thread::yield();
+      work(t);
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run_thread, t);
+    run_thread(0);
+    for (auto& t : pool) t.join();
+    if (error_) std::rethrow_exception(error_);
+    return finish(stopped_.load());
+  }
+
+ private:
+  /// What one thread collects before merging it under the lock.
+  struct Worker {
+    explicit Worker(Search& s) : search(s) {}
+    Search& search;
+    std::vector<Node> children;
+    std::vector<LatticePose> scored;
+    long long cells = 0;
+
+    void score_leaf(int it, int iy, int ix) {
+      for (const Exclusion& zone : search.opt_.exclude) {
+        if (zone.contains(ix, iy, it)) return;
+      }
+      const PlacedLocalGrid& local = search.grids_.placed(it);
+      const LatticePose c{ix, iy, it, score(search.g_, local, ix, iy)};
+      cells += static_cast<long long>(local.value.size());
+      scored.push_back(c);
+      // Lock-free reject of the usual case: strictly worse than the incumbent.
+      if (c.score < search.best_score_.load(std::memory_order_relaxed)) return;
+      std::lock_guard<std::mutex> lock(search.mu_);
+      if (!search.found_ || better(c, search.best_)) {
+        search.best_ = c;
+        search.found_ = true;
+        search.best_score_.store(c.score, std::memory_order_relaxed);
+      }
+    }
+
+    /// Bounds (or scores, for a single pose) the child node and keeps it if promising.
+    void add_child(int it, int a, int iy, int ix, int h) {
+      const Lattice& lat = search.lat_;
+      if (a == 0 && h == 0) {
+        score_leaf(it, iy, ix);
+        return;
+      }
+      const int it1 = std::min(it + (1 << a) - 1, lat.headings - 1);
+      const int side = 1 << h;
+      // A node inside one zone holds no candidate (one covered only by several zones
+      // together is kept: only less pruning).
+      for (const Exclusion& zone : search.opt_.exclude) {
+        if (zone.contains_block(it, it1, ix, iy, std::min(ix + side - 1, lat.x1),
+                                std::min(iy + side - 1, lat.y1))) {
+          return;
+        }
+      }
+      Node n{0.0, it, iy, ix, h, a};
+      if (a == 0) {
+        const PlacedLocalGrid& local = search.grids_.placed(it);
+        n.bound = block_bound(search.pyr_, local, h, ix, iy);
+        cells += static_cast<long long>(local.value.size());
+      } else {
+        n.bound = search.interval_bound(n, it1);
+        cells += static_cast<long long>(search.points_->size());
+      }
+      if (search.promising_fast(n)) children.push_back(n);
+    }
+
+    void expand(const Node& n) {
+      const Lattice& lat = search.lat_;
+      if (n.a > 0 &&
+          (n.h == 0 ||
+           2 * search.widening(search.points_->max_norm, search.half_span(n.a)) >= (1 << n.h))) {
+        const int half = 1 << (n.a - 1);
+        add_child(n.it, n.a - 1, n.iy, n.ix, n.h);
+        if (n.it + half < lat.headings) add_child(n.it + half, n.a - 1, n.iy, n.ix, n.h);
+        return;
+      }
+      const int half = 1 << (n.h - 1);
+      const int ix_end = std::min(n.ix + 2 * half - 1, lat.x1);
+      const int iy_end = std::min(n.iy + 2 * half - 1, lat.y1);
+      for (int iy = n.iy; iy <= iy_end; iy += half) {
+        for (int ix = n.ix; ix <= ix_end; ix += half) add_child(n.it, n.a, iy, ix, n.h - 1);
+      }
+    }
+
+    /// Hands the scored leaves and counters to the search (under its lock).
+    void merge() {
+      std::lock_guard<std::mutex> lock(search.mu_);
+      search.result_.poses_scored += static_cast<long long>(scored.size());
+      search.result_.cells_scored += cells;
+      search.result_.scored.insert(search.result_.scored.end(), scored.begin(), scored.end());
+      scored.clear();
+      cells = 0;
+    }
+  };
+
+  /// Half the angle an interval of 2^a headings spans around its middle heading, in steps.
+  static int half_span(int a) { return a == 0 ? 0 : 1 << (a - 1); }
+  /// Cells a point at `norm` (m) can move when the heading turns by up to `steps` steps.
+  int widening(double norm, int steps) const {
+    if (steps == 0) return 0;
+    return static_cast<int>(norm * steps * std::abs(lat_.step_theta) * inv_res_ + 1e-6) + 1;
+  }
+
+  /// Upper bound of every pose of node n (headings [n.it, it1]) from its rigid points.
+  double interval_bound(const Node& n, int it1) const {
+    const int ref = (n.it + it1) / 2;
+    const int w = widening(points_->max_norm, std::max(ref - n.it, it1 - ref));
+    const auto& cells = grids_.point_cells(ref);
+    const double sums = pyr_.ternary() ? interval_sum(arc8_levels_, min8_levels_, n, w, cells)
+                                       : interval_sum(arc_levels_, min_levels_, n, w, cells);
+    return sums + slack_;
+  }
+
+  /// The heading-interval bound's sums (see interval_bound), over grids of T.
+  template <typename T>
+  double interval_sum(const std::vector<const T*>& arc, const std::vector<const T*>& min,
+                      const Node& n, int w, const HeadingGrids::PointCells& c) const {
+    const int level = std::bit_width(static_cast<unsigned>((1 << n.h) + 2 * w - 1));
+    const double free_weight =
+        points_->size() > points_->hit_count ? points_->weight[points_->hit_count] : 0.0;
+    double positive = 0.0, negative = 0.0;
+    if (level > pyr_.depth()) {  // wider than any level: the whole grid's extremes
+      positive = static_cast<double>(c.hit_offset.size()) * std::max(pyr_.arc_max_all, 0.0f);
+      negative = static_cast<double>(c.free_offset.size()) * std::min(pyr_.grid_min_all, 0.0f);
+      return positive + free_weight * negative;
+    }
+    // Pooled cells cover [x, x + 2^level): read w cells before the block.
+    const T* arc_level = arc[static_cast<std::size_t>(level)];
+    const T* min_level = min[static_cast<std::size_t>(level)];
+    const int bx = n.ix + g_.pad - w, by = n.iy + g_.pad - w;
+    if (n.ix >= w && n.iy >= w) {  // every read lies inside the padded grid: flat offsets
+      const std::ptrdiff_t base = static_cast<std::ptrdiff_t>(by) * width_ + bx;
+      for (std::ptrdiff_t o : c.hit_offset) {
+        positive += std::max(static_cast<float>(arc_level[base + o]), 0.0f);
+      }
+      for (std::ptrdiff_t o : c.free_offset) {
+        negative += std::min(static_cast<float>(min_level[base + o]), 0.0f);
+      }
+    } else {  // near the map's edge: a read before the padded grid starts at its edge
+      auto at = [&](int x, int y) {  // (dropping cells that do not exist)
+        return static_cast<std::ptrdiff_t>(std::max(0, by + y)) * width_ + std::max(0, bx + x);
+      };
+      for (std::size_t k = 0; k < c.hit_x.size(); ++k) {
+        positive += std::max(static_cast<float>(arc_level[at(c.hit_x[k], c.hit_y[k])]), 0.0f);
+      }
+      for (std::size_t k = 0; k < c.free_x.size(); ++k) {
+        negative += std::min(static_cast<float>(min_level[at(c.free_x[k], c.free_y[k])]), 0.0f);
+      }
+    }
+    return positive + free_weight * negative;
+  }
+
+  /// Could the node hold a pose better than the incumbent? Reads the incumbent's score
+  /// without the lock first: it only ever rises, so a stale value never drops a node that
+  /// could win; only a bound equal to it needs the exact test.
+  bool promising_fast(const Node& n) const {
+    const double b = best_score_.load(std::memory_order_relaxed);
+    if (n.bound < b) return false;
+    if (n.bound > b) return true;
+    std::lock_guard<std::mutex> lock(mu_);
+    return promising(n);
+  }
+  /// Exact test, under the lock. An equal score wins only at a lower index, and the node's
+  /// lowest index is its first pose.
+  bool promising(const Node& n) const {
+    if (!found_) return true;
+    if (n.bound != best_.score) return n.bound > best_.score;
+    return index_less(n.it, n.iy, n.ix, best_);
+  }
+
+  static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
+
+  /// Takes the best promising node of thread t's heap, or else steals one from another
+  /// heap (so a thread whose share ran out helps the others). Counts it as in work.
+  bool take(std::size_t t, Node& n) {
+    for (std::size_t i = 0; i < heaps_.size(); ++i) {
+      const std::size_t v = (t + i) % heaps_.size();
+      std::lock_guard<std::mutex> lock(*heap_mu_[v]);
+      std::vector<Node>& heap = heaps_[v];
+      if (heap.empty() || !promising_fast(heap.front())) continue;
+      std::pop_heap(heap.begin(), heap.end(), heap_less);
+      n = heap.back();
+      heap.pop_back();
+      ++active_;
+      return true;
+    }
+    return false;
+  }
+
+  /// Thread t's loop: take a node, expand it, keep its promising children in heap t. A thread
+  /// stops when no heap holds a promising node and no node is being expanded (a thread that
+  /// pushes children always looks again, so no node is left behind).
+  void work(std::size_t t) {
+    Worker w(*this);
+    try {
+      while (!stopped_.load(std::memory_order_relaxed)) {
+        if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
+          stopped_ = true;
+          break;
+        }
+        Node n;
+        if (!take(t, n)) {
+          if (active_.load() == 0) break;
+          std::this_thread::yield();
+          continue;
+        }
+        w.expand(n);
+        {
+          std::lock_guard<std::mutex> lock(*heap_mu_[t]);
+          for (const Node& c : w.children) {
+            heaps_[t].push_back(c);
+            std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+          }
+        }
+        w.children.clear();
+        --active_;
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (!error_) error_ = std::current_exception();
+      stopped_ = true;
+    }
+    w.merge();
+  }
+
+  SearchResult finish(bool stopped) {
+    // The open nodes that could still win (after the threads stopped: no lock needed).
+    std::vector<Node> open;
+    for (const auto& heap : heaps_) {
+      for (const Node& n : heap) {
+        if (promising(n)) open.push_back(n);
+      }
+    }
+    if (stopped && !found_ && !open.empty()) {
+      // Out of time before any pose was scored: dive from the best open node to a leaf.
+      Worker w(*this);
+      Node n = *std::min_element(open.begin(), open.end(), visit_before);
+      while (!found_) {
+        w.expand(n);
+        if (found_ || w.children.empty()) break;
+        n = *std::min_element(w.children.begin(), w.children.end(), visit_before);
+        w.children.clear();
+      }
+      w.merge();
+    }
+    result_.best = best_;
+    result_.proven_optimal = true;
+    result_.upper_bound = best_.score;
+    for (const Node& n : open) {
+      if (!promising(n)) continue;  // (the dive may have raised the incumbent)
+      result_.proven_optimal = false;
+      result_.upper_bound = std::max(result_.upper_bound, n.bound);
+    }
+    return std::move(result_);
+  }
+
+  const Lattice& lat_;
+  const HeadingGrids& grids_;
+  const BoundPyramid& pyr_;
+  const BranchAndBoundOptions& opt_;
+  const PaddedGrid& g_;
+  const ScanPoints* points_ = nullptr;
+  double inv_res_ = 1.0;
+  std::ptrdiff_t width_ = 0;
+  double slack_ = 0.0;
+  std::vector<const float*> arc_levels_, min_levels_;
+  std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
+
+  std::vector<std::vector<Node>> heaps_;              ///< one best-first heap per thread ...
+  std::vector<std::unique_ptr<std::mutex>> heap_mu_;  ///< ... each with its lock
+  std::atomic<int> active_{0};                        ///< nodes being expanded
+  std::atomic<int> roots_pending_{0};                 ///< threads still making top nodes
+
+  mutable std::mutex mu_;  // guards the incumbent, the error and the result
+  LatticePose best_;
+  bool found_ = false;
+  std::atomic<double> best_score_{-std::numeric_limits<double>::infinity()};
+  std::atomic<bool> stopped_{false};
+  std::exception_ptr error_;
+  SearchResult result_;
+};
+
+}  // namespace
+
+SearchResult search_branch_and_bound(const Lattice& lattice, const HeadingGrids& grids,
+                                     const BoundPyramid& pyramid,
+                                     const BranchAndBoundOptions& options) {
+  validate(lattice, *grids.level().global, pyramid);
+  const Lattice& own = grids.lattice();
+  if (own.headings != lattice.headings || own.theta0 != lattice.theta0 ||
+      own.step_theta != lattice.step_theta) {
+    throw Error("branch and bound: the heading grids were made for another lattice");
+  }
+  return Search(lattice, grids, pyramid, options).run();
+}
+
+SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& finest,
+                                     const BoundPyramid& pyramid,
+                                     const std::optional<Exclusion>& exclude) {
+  if (finest.global == nullptr) throw Error("branch and bound: the search level has no grid");
+  validate(lattice, *finest.global, pyramid);
+  const HeadingGrids grids(lattice, finest);
+  grids.make_all();  // in parallel with finest.threads; the search itself runs on one
+  BranchAndBoundOptions options;
+  if (exclude) options.exclude.push_back(*exclude);
+  return search_branch_and_bound(lattice, grids, pyramid, options);
+}
+
+}  // namespace gridloc

@@ -1,0 +1,398 @@
+#include "gridloc/engine/correlation/search.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+/// Lattice order used for ties: (it, iy, ix) ascending.
+bool index_less(const LatticePose& a, const LatticePose& b) {
+  return std::tie(a.it, a.iy, a.ix) < std::tie(b.it, b.iy, b.ix);
+}
+
+/// Scores `candidates` (sorted by index) on one level, building each heading's grid once.
+void score_all(std::vector<LatticePose>& candidates, const Lattice& lattice,
+               const SearchLevel& level, SearchResult& result) {
+  // Candidates are sorted by heading: one group per heading, each built and scored alone,
+  // so any number of threads computes the same scores.
+  std::vector<std::size_t> starts;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (k == 0 || candidates[k].it != candidates[k - 1].it) starts.push_back(k);
+  }
+  starts.push_back(candidates.size());
+  const auto groups = static_cast<std::ptrdiff_t>(starts.size()) - 1;
+  std::vector<long long> cells(static_cast<std::size_t>(std::max<std::ptrdiff_t>(groups, 0)), 0);
+#pragma omp parallel for schedule(dynamic) num_threads(level.threads) if (level.threads > 1)
+  for (std::ptrdiff_t g = 0; g < groups; ++g) {
+    const auto begin = starts[static_cast<std::size_t>(g)],
+               end = starts[static_cast<std::size_t>(g) + 1];
+    const PlacedLocalGrid placed = place_heading(level, lattice.theta(candidates[begin].it));
+    for (std::size_t k = begin; k < end; ++k) {
+      candidates[k].score = score(*level.global, placed, candidates[k].ix, candidates[k].iy);
+    }
+    cells[static_cast<std::size_t>(g)] =
+        static_cast<long long>(placed.value.size()) * static_cast<long long>(end - begin);
+  }
+  for (long long c : cells) result.cells_scored += c;
+  result.poses_scored += static_cast<long long>(candidates.size());
+}
+
+}  // namespace
+
+PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
+  PaddedGrid p;
+  p.pad = pad;
+  p.width = grid.width();
+  p.height = grid.height();
+  if (pad < 0) throw Error("padded grid: pad = " + std::to_string(pad) + " must be >= 0");
+  // Sizes in double first: a huge pad must be an error, not an int overflow.
+  const double w = grid.width() + 2.0 * pad, h = grid.height() + 2.0 * pad;
+  if (w * h >= 2147483648.0) {
+    std::ostringstream m;
+    m << "padded grid of " << w << " x " << h << " cells is too large (2^31 cells or more)";
+    throw Error(m.str());
+  }
+  GridGeometry g = grid.geometry;
+  g.width = static_cast<int>(w);
+  g.height = static_cast<int>(h);
+  p.grid = EvidenceGrid(g, 0.0f);
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    std::copy(grid.row(iy), grid.row(iy) + grid.width(), p.grid.row(iy + pad) + pad);
+  }
+  p.arc_view = p.grid.cells;
+  if (rule == ArcRule::Neutral) {
+    for (float& v : p.arc_view) v = std::max(v, 0.0f);
+  }
+  auto ternary = [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; };
+  if (std::all_of(p.grid.cells.begin(), p.grid.cells.end(), ternary)) {
+    p.arc_view8 = to_int8_with_slack(p.arc_view);
+    p.grid8 = to_int8_with_slack(p.grid.cells);
+  }
+  return p;
+}
+
+std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells) {
+  std::vector<std::int8_t> out(cells.size() + kGatherSlack, 0);
+  std::transform(cells.begin(), cells.end(), out.begin(),
+                 [](float v) { return static_cast<std::int8_t>(v); });
+  return out;
+}
+
+namespace {
+
+/// Fractional bits a float needs to be whole (0 for integers and 0); more than any limit
+/// for NaN and infinities.
+int fraction_bits(float v) {
+  if (v == 0.0f) return 0;
+  if (!std::isfinite(v)) return 1000;
+  int exponent = 0;
+  const float mantissa = std::frexp(v, &exponent);  // |mantissa| in [0.5, 1)
+  // v = m * 2^(exponent - 24) with m the 24-bit integer mantissa.
+  const auto m = static_cast<std::uint32_t>(std::abs(std::ldexp(mantissa, 24)));
+  return std::max(0, 24 - exponent - std::countr_zero(m));
+}
+
+}  // namespace
+
+void set_fixed_point(PlacedLocalGrid& local) {
+  local.fixed.clear();
+  local.fixed_shift = -1;
+  // The fewest fractional bits that make every value whole (then multiplying by 2^shift is
+  // exact), and the magnitude limit 2^15.
+  constexpr int kMaxShift = 24;
+  constexpr double kLimit = 32768.0;
+  int shift = 0;
+  float largest = 0.0f;
+  float previous = 0.0f;  // values come in runs of equal ones: one look per run
+  for (float v : local.value) {
+    if (v == previous) continue;
+    previous = v;
+    shift = std::max(shift, fraction_bits(v));
+    largest = std::max(largest, std::abs(v));
+  }
+  if (shift > kMaxShift || std::ldexp(static_cast<double>(largest), shift) > kLimit) return;
+  local.fixed_shift = shift;
+  // In float: a power of 2 times a value <= 2^15 is exact, and the loop vectorizes.
+  const float scale = std::ldexp(1.0f, shift);
+  local.fixed.resize(local.value.size());
+  std::transform(local.value.begin(), local.value.end(), local.fixed.begin(),
+                 [&](float v) { return static_cast<std::int32_t>(v * scale); });
+}
+
+double score_reference(const EvidenceGrid& global, const SparseLocalGrid& local, int cx, int cy,
+                       ArcRule rule) {
+  double positive = 0.0, negative = 0.0;
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    const int x = cx + local.dx[k], y = cy + local.dy[k];
+    if (!global.geometry.contains(x, y)) continue;
+    const float v = local.value[k];
+    float g = global.at(x, y);
+    if (v > 0.0f) {
+      if (rule == ArcRule::Neutral) g = std::max(g, 0.0f);
+      positive += static_cast<double>(v * g);
+    } else {
+      negative += static_cast<double>(v * g);
+    }
+  }
+  return positive + negative;
+}
+
+PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
+  PlacedLocalGrid p;
+  p.offset.reserve(local.size());
+  p.value.reserve(local.size());
+  const int w = global.grid.width();  // |offset| < cells < 2^31 (pad_grid)
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t k = 0; k < local.size(); ++k) {
+      if ((local.value[k] > 0.0f) != (pass == 0)) continue;
+      p.offset.push_back(local.dy[k] * w + local.dx[k]);
+      p.value.push_back(local.value[k]);
+    }
+    if (pass == 0) p.arc_count = p.value.size();
+  }
+  set_fixed_point(p);
+  return p;
+}
+
+namespace {
+
+/// point_cell() of n points (centre 0) in one loop the compiler vectorizes: the same
+/// operations in the same order, so the same cells bit for bit (no FMA in either clone).
+__attribute__((target_clones("avx2", "default"))) void point_cells(const double* x, const double* y,
+                                                                   std::size_t n, double c,
+                                                                   double s, double inv, int* xs,
+                                                                   int* ys) {
+  for (std::size_t k = 0; k < n; ++k) {
+    xs[k] = floor_to_int((c * x[k] - s * y[k]) * inv + 0.5);
+    ys[k] = floor_to_int((s * x[k] + c * y[k]) * inv + 0.5);
+  }
+}
+
+}  // namespace
+
+PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global) {
+  const double inv = 1.0 / global.grid.geometry.resolution;
+  const double c = std::cos(theta), s = std::sin(theta);
+  const int w = global.grid.width();
+  // Pass 1, independent per point: the cells.
+  thread_local std::vector<int> xs, ys;
+  xs.resize(points.size());
+  ys.resize(points.size());
+  point_cells(points.x.data(), points.y.data(), points.size(), c, s, inv, xs.data(), ys.data());
+  // Pass 2: merge points per cell, finding a cell's entry through a small open-addressing
+  // table (kept in L1/L2, unlike a table over the grid): a slot whose epoch is this call's
+  // holds a cell offset and its entry. No clearing: each call has a new epoch.
+  struct Slot {
+    std::uint32_t epoch;
+    std::int32_t offset;
+    std::uint32_t entry;
+  };
+  thread_local std::vector<Slot> table;
+  thread_local std::uint32_t epoch = 0;
+  std::size_t size = 64;
+  while (size < 4 * points.size()) size *= 2;
+  if (table.size() < size || ++epoch == 0) {
+    table.assign(std::max(size, table.size()), Slot{0, 0, 0});
+    epoch = 1;
+  }
+  const std::uint32_t now = epoch;
+  Slot* const slots = table.data();
+  const std::size_t mask = size - 1;
+  const int shift = 64 - std::countr_zero(size);
+  PlacedLocalGrid p;
+  p.offset.resize(points.size());
+  p.value.resize(points.size());
+  std::int32_t* const offset = p.offset.data();
+  float* const value = p.value.data();
+  std::uint32_t n = 0;  // entries so far
+  // The slot of point k's cell: its entry's, or the empty one where it goes (its epoch
+  // stays old until the caller makes it an entry).
+  auto slot_of = [&](std::size_t k) -> Slot& {
+    const std::int32_t o = ys[k] * w + xs[k];
+    // Fibonacci hashing: the top bits of the product spread nearby offsets apart.
+    std::size_t h = static_cast<std::size_t>(
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(o)) * 0x9E3779B97F4A7C15ull) >>
+        shift);
+    while (slots[h].epoch == now && slots[h].offset != o) h = (h + 1) & mask;
+    Slot& t = slots[h];
+    if (t.epoch != now) t.offset = o;
+    return t;
+  };
+  // A cell holding a beam end is +1; any other the float sum of its free samples in point
+  // order, as the canvas adds them; a sum of 0 is no cell.
+  for (std::size_t k = 0; k < points.hit_count; ++k) {
+    Slot& t = slot_of(k);
+    if (t.epoch == now) continue;
+    t.epoch = now;
+    t.entry = n;
+    offset[n] = t.offset;
+    value[n++] = 1.0f;
+  }
+  p.arc_count = n;
+  for (std::size_t k = points.hit_count; k < points.size(); ++k) {
+    Slot& t = slot_of(k);
+    if (t.epoch != now) {
+      t.epoch = now;
+      t.entry = n;
+      offset[n] = t.offset;
+      value[n++] = points.weight[k];
+    } else if (t.entry >= p.arc_count) {
+      value[t.entry] += points.weight[k];
+    }
+  }
+  std::size_t kept = p.arc_count;
+  for (std::size_t e = p.arc_count; e < n; ++e) {
+    if (value[e] == 0.0f) continue;
+    offset[kept] = offset[e];
+    value[kept++] = value[e];
+  }
+  p.offset.resize(kept);
+  p.value.resize(kept);
+  set_fixed_point(p);
+  return p;
+}
+
+PlacedLocalGrid place_heading(const SearchLevel& level, double theta) {
+  if (level.points != nullptr) return place_points(*level.points, theta, *level.global);
+  return place(level.make_local(theta, Eigen::Vector2d::Zero()), *level.global);
+}
+
+SearchResult search_exhaustive(const Lattice& lattice, const SearchLevel& finest) {
+  SearchResult result;
+  std::vector<LatticePose> candidates;
+  candidates.reserve(static_cast<std::size_t>(lattice.headings) * (lattice.x1 - lattice.x0 + 1) *
+                     (lattice.y1 - lattice.y0 + 1));
+  for (int it = 0; it < lattice.headings; ++it) {
+    for (int iy = lattice.y0; iy <= lattice.y1; ++iy) {
+      for (int ix = lattice.x0; ix <= lattice.x1; ++ix) candidates.push_back({ix, iy, it, 0.0});
+    }
+  }
+  score_all(candidates, lattice, finest, result);
+  result.best = candidates.front();
+  for (const auto& c : candidates) {
+    if (better(c, result.best)) result.best = c;
+  }
+  result.upper_bound = result.best.score;  // every pose scored: proven
+  result.scored = std::move(candidates);
+  return result;
+}
+
+SearchResult search_multires(const Lattice& lattice, const std::vector<SearchLevel>& levels,
+                             int keep) {
+  SearchResult result;
+  const int top = static_cast<int>(levels.size()) - 1;
+  std::vector<LatticePose> kept;
+  for (int l = top; l >= 0; --l) {
+    // The lattice at level l: finest cells divided by 2^l (cells are >= 0 after clipping).
+    const int x0 = lattice.x0 >> l, x1 = lattice.x1 >> l;
+    const int y0 = lattice.y0 >> l, y1 = lattice.y1 >> l;
+    const int nx = x1 - x0 + 1, ny = y1 - y0 + 1;
+    std::vector<LatticePose> candidates;
+    if (l == top) {
+      for (int it = 0; it < lattice.headings; ++it) {
+        for (int iy = y0; iy <= y1; ++iy) {
+          for (int ix = x0; ix <= x1; ++ix) candidates.push_back({ix, iy, it, 0.0});
+        }
+      }
+    } else {
+      std::vector<char> seen(static_cast<std::size_t>(nx) * ny * lattice.headings, 0);
+      for (const auto& p : kept) {
+        for (int it = std::max(0, p.it - 1); it <= std::min(lattice.headings - 1, p.it + 1); ++it) {
+          for (int iy = std::max(y0, 2 * p.iy - 1); iy <= std::min(y1, 2 * p.iy + 2); ++iy) {
+            for (int ix = std::max(x0, 2 * p.ix - 1); ix <= std::min(x1, 2 * p.ix + 2); ++ix) {
+              char& s = seen[(static_cast<std::size_t>(it) * ny + (iy - y0)) * nx + (ix - x0)];
+              if (!s) {
+                s = 1;
+                candidates.push_back({ix, iy, it, 0.0});
+              }
+            }
+          }
+        }
+      }
+      std::sort(candidates.begin(), candidates.end(), index_less);
+    }
+    score_all(candidates, lattice, levels[l], result);
+    const auto k =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(1, keep)), candidates.size());
+    kept = candidates;
+    std::partial_sort(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(k), kept.end(),
+                      better);
+    kept.resize(k);
+    if (l == 0) {
+      result.best = kept.front();
+      result.scored = std::move(candidates);
+    }
+  }
+  return result;
+}
+
+namespace {
+
+/// Vertex of the parabola through (-1, a), (0, b), (1, c), when b is a strict peak.
+double parabola_vertex(double a, double b, double c) {
+  const double curvature = a - 2.0 * b + c;
+  if (!(curvature < 0.0) || b < a || b < c) return 0.0;
+  return std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5);
+}
+
+}  // namespace
+
+RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
+                   int subdivisions,
+                   const std::function<const PlacedLocalGrid*(int it)>& lattice_grid) {
+  const PaddedGrid& g = *finest.global;
+  const int sub = std::max(1, subdivisions);
+  auto heading = [&](int j) { return lattice.theta(best.it + static_cast<double>(j) / sub); };
+  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.width && y < g.height; };
+
+  // Heading: 3 x 3 cells x (2 sub + 1) headings.
+  std::vector<PlacedLocalGrid> placed;
+  for (int j = -sub; j <= sub; ++j) {
+    const int it = best.it + j / sub;  // the lattice heading, when j is a whole step
+    const PlacedLocalGrid* built = j % sub == 0 && it >= 0 && it < lattice.headings && lattice_grid
+                                       ? lattice_grid(it)
+                                       : nullptr;
+    placed.push_back(built ? *built : place_heading(finest, heading(j)));
+  }
+  auto placed_at = [&](int j) -> const PlacedLocalGrid& {
+    return placed[static_cast<std::size_t>(j + sub)];
+  };
+  int bj = 0, bx = best.ix, by = best.iy;
+  double top = best.score;
+  for (int j = -sub; j <= sub; ++j) {
+    for (int y = best.iy - 1; y <= best.iy + 1; ++y) {
+      for (int x = best.ix - 1; x <= best.ix + 1; ++x) {
+        if (!inside(x, y)) continue;
+        const double s = score(g, placed_at(j), x, y);
+        if (s > top) top = s, bj = j, bx = x, by = y;
+      }
+    }
+  }
+  double dt = 0.0;
+  if (bj > -sub && bj < sub) {
+    dt = parabola_vertex(score(g, placed_at(bj - 1), bx, by), top,
+                         score(g, placed_at(bj + 1), bx, by));
+  }
+
+  // Position: a parabola through the chosen cell's neighbours along x and along y.
+  const PlacedLocalGrid& at_heading = placed_at(bj);
+  auto axis_offset = [&](int x0, int y0, int x1, int y1) {
+    if (!inside(x0, y0) || !inside(x1, y1)) return 0.0;
+    return parabola_vertex(score(g, at_heading, x0, y0), top, score(g, at_heading, x1, y1));
+  };
+  RefinedPose r;
+  r.score = top;
+  r.ix = bx + axis_offset(bx - 1, by, bx + 1, by);
+  r.iy = by + axis_offset(bx, by - 1, bx, by + 1);
+  r.it = best.it + (bj + dt) / sub;
+  return r;
+}
+
+}  // namespace gridloc

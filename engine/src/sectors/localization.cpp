@@ -1,0 +1,611 @@
+// Seed 000 §3: localization from a scan label and the sectors' labels.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+
+#include "gridloc/engine/sectors/visibility_sectors.hpp"
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+bool is_pair(char a, char b) {
+  return (a == 'M' && b == 'm') || (a == 'm' && b == 'M');
+}
+
+/// A label with some neighbouring M m pairs left out; `index` gives each kept character's
+/// position in the full label.
+struct Variant {
+  std::string label;
+  std::vector<int> index;
+};
+
+/// The label itself and every label with up to `pairs` neighbouring M m pairs deleted (the
+/// label is cyclic: its last and first characters are neighbours too).
+std::vector<Variant> variants(const std::string& label, int pairs) {
+  std::vector<Variant> out;
+  Variant full{label, {}};
+  for (int i = 0; i < static_cast<int>(label.size()); ++i) full.index.push_back(i);
+  out.push_back(full);
+  std::size_t from = 0;
+  for (int round = 0; round < pairs; ++round) {
+    const std::size_t to = out.size();
+    for (std::size_t v = from; v < to; ++v) {
+      const int n = static_cast<int>(out[v].label.size());
+      for (int i = 0; i < n && n >= 2; ++i) {
+        const int j = (i + 1) % n;
+        if (!is_pair(out[v].label[i], out[v].label[j])) continue;
+        Variant w;
+        for (int k = 0; k < n; ++k) {
+          if (k == i || k == j) continue;
+          w.label.push_back(out[v].label[k]);
+          w.index.push_back(out[v].index[k]);
+        }
+        const bool seen = std::any_of(out.begin(), out.end(),
+                                      [&](const Variant& x) { return x.index == w.index; });
+        if (!seen) out.push_back(std::move(w));
+      }
+    }
+    from = to;
+  }
+  return out;
+}
+
+/// The vertex at an M reading: the intersection of the lines fitted to `k` readings on each
+/// side (seed 000 eqs. (6)-(9)), or the reading itself when they are near parallel.
+Eigen::Vector2d locate_vertex(const std::vector<Eigen::Vector2d>& pts, int beam, int k) {
+  const int n = static_cast<int>(pts.size());
+  const auto P = [&](int i) { return pts[((i % n) + n) % n]; };
+  const auto fit = [&](int dir, Eigen::Vector2d& c, Eigen::Vector2d& d) {
+    c.setZero();
+    for (int s = 1; s <= k; ++s) c += P(beam + dir * s);
+    c /= k;
+    Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+    for (int s = 1; s <= k; ++s) S += (P(beam + dir * s) - c) * (P(beam + dir * s) - c).transpose();
+    d = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvectors().col(1);
+  };
+  Eigen::Vector2d c1, d1, c2, d2;
+  fit(+1, c1, d1);
+  fit(-1, c2, d2);
+  const double den = d1.x() * d2.y() - d1.y() * d2.x();
+  if (std::abs(den) < 0.05) return P(beam);  // < 3 deg apart: no corner to intersect
+  const Eigen::Vector2d w = c2 - c1;
+  const double t = (w.x() * d2.y() - w.y() * d2.x()) / den;
+  const Eigen::Vector2d v = c1 + t * d1;
+  // A corner far from its reading is a bad fit (another surface in the window).
+  return (v - P(beam)).norm() < 0.3 + 0.05 * P(beam).norm() ? v : P(beam);
+}
+
+/// Rigid fit: the pose (R, t) with world = R * local + t, least squares.
+Pose2 rigid_fit(const std::vector<Eigen::Vector2d>& local,
+                const std::vector<Eigen::Vector2d>& world) {
+  Eigen::Vector2d lc = Eigen::Vector2d::Zero(), wc = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < local.size(); ++k) lc += local[k], wc += world[k];
+  lc /= static_cast<double>(local.size());
+  wc /= static_cast<double>(world.size());
+  double s = 0.0, c = 0.0;
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    const Eigen::Vector2d a = local[k] - lc, b = world[k] - wc;
+    c += a.dot(b);
+    s += a.x() * b.y() - a.y() * b.x();
+  }
+  const double theta = std::atan2(s, c);
+  const Eigen::Vector2d t = wc - Eigen::Rotation2Dd(theta) * lc;
+  return {t.x(), t.y(), theta};
+}
+
+/// The positions of a label's D and c characters: the jumps of a scan, which a partial view
+/// keeps while the extrema between them come and go.
+std::vector<int> skeleton(const std::string& label) {
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(label.size()); ++i) {
+    if (label[i] == 'D' || label[i] == 'c') out.push_back(i);
+  }
+  return out;
+}
+
+/// The skeleton itself and every skeleton with up to `pairs` neighbouring D c (or c D) pairs
+/// left out (cyclic, like the label).
+std::vector<std::vector<int>> skeleton_variants(const std::string& label,
+                                                const std::vector<int>& skeleton, int pairs) {
+  std::vector<std::vector<int>> out{skeleton};
+  std::size_t from = 0;
+  for (int round = 0; round < pairs; ++round) {
+    const std::size_t to = out.size();
+    for (std::size_t v = from; v < to; ++v) {
+      const int n = static_cast<int>(out[v].size());
+      for (int i = 0; i < n && n >= 4; ++i) {
+        const int j = (i + 1) % n;
+        if (label[out[v][i]] == label[out[v][j]]) continue;  // DD or cc: not a pair
+        std::vector<int> w;
+        for (int k = 0; k < n; ++k) {
+          if (k != i && k != j) w.push_back(out[v][k]);
+        }
+        if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
+      }
+    }
+    from = to;
+  }
+  return out;
+}
+
+/// The positions of the M characters strictly between positions `from` and `to` of a cyclic
+/// label (from == to: the whole label but `from`).
+std::vector<int> maxima_between(const std::string& label, int from, int to) {
+  std::vector<int> out;
+  const int n = static_cast<int>(label.size());
+  for (int i = (from + 1) % n; i != to; i = (i + 1) % n) {
+    if (label[i] == 'M') out.push_back(i);
+  }
+  return out;
+}
+
+/// A map edge ready for point-to-wall distances: its start, direction, 1 / length^2 and unit
+/// normal, computed once per localization rather than per point and pass.
+struct Wall {
+  Eigen::Vector2d a, e, normal;
+  double inv_len2;
+};
+
+std::vector<Wall> walls_of(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& edges) {
+  std::vector<Wall> out;
+  for (const auto& [a, b] : edges) {
+    const Eigen::Vector2d e = b - a;
+    out.push_back({a, e, Eigen::Vector2d(-e.y(), e.x()).normalized(), 1.0 / e.squaredNorm()});
+  }
+  return out;
+}
+
+/// The Gauss-Newton normal equations of the scan's points (robot frame) at `pose` against
+/// their nearest wall within `gate` (m): H, the gradient g, the sum of squared distances and
+/// the points used.
+struct NormalEquations {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double sum2 = 0.0;
+  int used = 0;
+};
+
+NormalEquations normal_equations(const std::vector<Eigen::Vector2d>& points,
+                                 const std::vector<Wall>& walls, const Pose2& pose, double gate) {
+  NormalEquations ne;
+  const Eigen::Rotation2Dd R(pose.theta);
+  const Eigen::Vector2d t(pose.x, pose.y);
+  for (const auto& p : points) {
+    const Eigen::Vector2d rp = R * p, w = rp + t;
+    double best = gate, r = 0.0;
+    const Wall* nearest = nullptr;
+    for (const Wall& wall : walls) {
+      const double u = (w - wall.a).dot(wall.e) * wall.inv_len2;
+      if (u < 0.0 || u > 1.0) continue;
+      const double d = wall.normal.dot(w - wall.a);
+      if (std::abs(d) < best) best = std::abs(d), r = d, nearest = &wall;
+    }
+    if (nearest == nullptr) continue;
+    const Eigen::Vector2d& n = nearest->normal;
+    const Eigen::Vector3d J(n.x(), n.y(), n.dot(Eigen::Vector2d(-rp.y(), rp.x())));
+    ne.H += J * J.transpose();
+    ne.g += J * r;
+    ne.sum2 += r * r;
+    ++ne.used;
+  }
+  return ne;
+}
+
+/// Gauss-Newton on the distances from the scan's points (robot frame) to their nearest map
+/// wall, with a shrinking gate: a pose from a few located vertices, made exact by every
+/// reading on the walls it explains.
+Pose2 polish(const std::vector<Eigen::Vector2d>& points, const std::vector<Wall>& walls,
+             Pose2 pose) {
+  for (const double gate : {0.3, 0.15, 0.08, 0.04, 0.04}) {
+    const NormalEquations ne = normal_equations(points, walls, pose, gate);
+    if (ne.used < 3) break;
+    const Eigen::Vector3d step = ne.H.ldlt().solve(-ne.g);
+    if (!step.allFinite()) break;
+    pose = {pose.x + step.x(), pose.y + step.y(), normalize_angle(pose.theta + step.z())};
+  }
+  return pose;
+}
+
+/// The Gauss-Newton covariance sigma^2 H^-1 of a pose fitted to the walls (polish()'s last
+/// gate): sigma^2 from the residuals, infinite variances where the walls leave a direction
+/// free (a corridor's axis).
+Eigen::Matrix3d pose_covariance(const std::vector<Eigen::Vector2d>& points,
+                                const std::vector<Wall>& walls, const Pose2& pose) {
+  const NormalEquations ne = normal_equations(points, walls, pose, 0.04);
+  const Eigen::Matrix3d& H = ne.H;
+  const int used = ne.used;
+  const double sum2 = ne.sum2;
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Constant(inf);
+  if (used <= 3) return cov;
+  // A floor on sigma: exact (noise-free) readings would claim an exact pose.
+  const double sigma2 = std::max(sum2 / (used - 3), 1e-6);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(H);
+  if (eig.eigenvalues().minCoeff() < 1e-9 * std::max(1.0, eig.eigenvalues().maxCoeff())) {
+    return cov;
+  }
+  return sigma2 * H.inverse();
+}
+
+/// Seed 000 §3.1's scan is a full turn: angles increase and cover 360 deg without a large
+/// gap. Throws gridloc::Error naming the fault otherwise (a 180 or 270 deg field of view, a
+/// scan in degrees, clockwise beams).
+void check_full_turn(const RangeScan& scan) {
+  const std::size_t n = scan.angles.size();
+  if (n < 3) throw Error("sectors: a scan of " + std::to_string(n) + " beams is no full turn");
+  std::vector<double> steps;
+  double widest = 0.0;
+  std::size_t after = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double d = scan.angles[i] - scan.angles[i - 1];
+    if (!(d > 0.0)) {
+      throw Error("sectors: scan angles must increase (counter-clockwise beams); beam " +
+                  std::to_string(i) + " is at " + std::to_string(scan.angles[i]) + " rad after " +
+                  std::to_string(scan.angles[i - 1]));
+    }
+    steps.push_back(d);
+    if (d > widest) widest = d, after = i - 1;
+  }
+  const double span = scan.angles.back() - scan.angles.front();
+  if (span >= 2.0 * std::numbers::pi + 1e-9) {
+    throw Error("sectors: scan angles span " + std::to_string(span) +
+                " rad, more than a turn (radians expected)");
+  }
+  const double closing = 2.0 * std::numbers::pi - span;
+  if (closing > widest) widest = closing, after = n - 1;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
+                   steps.end());
+  const double step = steps[steps.size() / 2];
+  if (widest > std::max(4.0 * step, 0.2)) {
+    throw Error("sectors: the scan covers " +
+                std::to_string(std::lround(rad2deg(2.0 * std::numbers::pi - widest))) +
+                " deg (a gap of " + std::to_string(std::lround(rad2deg(widest))) +
+                " deg after beam " + std::to_string(after) +
+                "); visibility sectors need a full 360 deg turn");
+  }
+}
+
+}  // namespace
+
+SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
+                              const SectorLocalizationOptions& o) {
+  validate(scan);
+  check_full_turn(scan);
+  if (o.max_deleted_pairs < 0 || o.line_points < 2 || !(o.ambiguity_residual_m >= 0.0) ||
+      !(o.residual_cap_m > 0.0) || !(o.rough_residual_m > 0.0) || o.max_deleted_jumps < 0) {
+    throw Error(
+        "SectorLocalizationOptions: max_deleted_pairs and max_deleted_jumps must be >= 0, "
+        "line_points >= 2, ambiguity_residual_m >= 0, residual_cap_m and rough_residual_m > 0");
+  }
+  const ScanLabel l = construct_scan_label(scan, o.label);
+  SectorFix fix;
+  fix.scan_label = l.label;
+  const int n = static_cast<int>(scan.ranges.size());
+  std::vector<Eigen::Vector2d> pts(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double r = std::min(scan.ranges[i], scan.max_range);
+    pts[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
+  }
+  const std::vector<Wall> walls = walls_of(polygon_edges(sectors.map));
+  // How well the map explains the scan at a pose: each return's range against the range
+  // cast along its beam on the polygons, the difference capped, averaged. Beams without
+  // return do not count: real scanners drop beams on glass and dark surfaces.
+  std::vector<int> hits;
+  for (int i = 0; i < n; ++i) {
+    if (scan.ranges[i] < scan.max_range) hits.push_back(i);
+  }
+  const auto range_residual = [&](const Pose2& pose, int stride) {
+    const Eigen::Vector2d origin(pose.x, pose.y);
+    double sum = 0.0;
+    int used = 0;
+    for (std::size_t h = 0; h < hits.size(); h += static_cast<std::size_t>(stride), ++used) {
+      const int i = hits[h];
+      const double a = pose.theta + scan.angles[i];
+      const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+      double expected = scan.max_range;
+      for (const Wall& wall : walls) {
+        const Eigen::Vector2d &e = wall.e, w = wall.a - origin;
+        const double den = cross2(dir, e);
+        if (std::abs(den) < 1e-12) continue;  // parallel: not seen
+        const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
+        if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
+      }
+      sum += std::min(o.residual_cap_m, std::abs(scan.ranges[i] - expected));
+    }
+    return sum / used;
+  };
+  // Located vertices that a rigid motion cannot put near their map vertices are wrong
+  // correspondences (a corner fitted across two surfaces) or a wrong match: cheap to rule out
+  // before the residual. A D reading lies within a beam step of its corner, so the allowance
+  // grows with range.
+  double beam_step = 2.0 * std::numbers::pi / n;
+  for (int i = 1; i < n; ++i)
+    beam_step = std::max(beam_step, std::abs(normalize_angle(scan.angles[i] - scan.angles[i - 1])));
+  beam_step = std::min(beam_step, 0.2);
+  const auto allowance = [&](const Eigen::Vector2d& local) {
+    return 0.3 + 1.5 * beam_step * local.norm();
+  };
+  // The rigid fit with correspondences it cannot place left out, worst first (`local` keeps
+  // the rest); nullopt when fewer than two remain.
+  const auto trimmed_fit = [&](std::vector<Eigen::Vector2d>& local,
+                               std::vector<Eigen::Vector2d> world) -> std::optional<Pose2> {
+    while (local.size() >= 2) {
+      const Pose2 pose = rigid_fit(local, world);
+      const Eigen::Rotation2Dd R(pose.theta);
+      const Eigen::Vector2d t(pose.x, pose.y);
+      std::size_t worst = 0;
+      double worst_excess = 0.0;
+      for (std::size_t k = 0; k < local.size(); ++k) {
+        const double excess = (R * local[k] + t - world[k]).norm() - allowance(local[k]);
+        if (excess > worst_excess) worst_excess = excess, worst = k;
+      }
+      if (worst_excess <= 0.0) return pose;
+      local.erase(local.begin() + static_cast<std::ptrdiff_t>(worst));
+      world.erase(world.begin() + static_cast<std::ptrdiff_t>(worst));
+    }
+    return std::nullopt;
+  };
+  // Sectors with alike labels give the same pose from the same vertices, many times over.
+  std::vector<std::pair<Pose2, double>> scored;
+  const auto residual_at = [&](const Pose2& pose) {
+    for (const auto& [p, r] : scored) {
+      if (std::abs(p.x - pose.x) < 1e-9 && std::abs(p.y - pose.y) < 1e-9 &&
+          std::abs(p.theta - pose.theta) < 1e-9) {
+        return r;
+      }
+    }
+    scored.emplace_back(pose, range_residual(pose, 1));
+    return scored.back().second;
+  };
+  struct Candidate {
+    int sector;
+    Pose2 pose;
+    int deleted, matched;
+    double residual;
+    std::vector<Eigen::Vector2d> located;  ///< the vertices the pose was fitted to (robot frame)
+  };
+  std::vector<Eigen::Vector2d> returns;
+  for (int i = 0; i < n; ++i) {
+    if (scan.ranges[i] < scan.max_range) returns.push_back(pts[i]);
+  }
+  // Many sectors give the same correspondences, hence the same rough pose.
+  std::vector<std::pair<Pose2, Pose2>> polish_cache;
+  const auto polished = [&](const Pose2& rough, bool gated) {
+    for (const auto& [r, p] : polish_cache) {
+      if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
+    }
+    // A rough pose from located corners that the scan plainly refutes (a quarter of the
+    // returns, capped mean) is not worth a polish: wrong matches are most of the candidates,
+    // and the polish most of the cost. Right matches are a few centimetres off before the
+    // polish, far below the bar. Look-alike placements rest on two corners only and can be
+    // tens of centimetres off: they are always polished.
+    const bool refuted = gated && range_residual(rough, 4) > o.rough_residual_m;
+    const Pose2 p = refuted ? rough : polish(returns, walls, rough);
+    polish_cache.emplace_back(rough, p);
+    return polish_cache.back().second;
+  };
+  std::vector<Candidate> found;
+  // Deletions on either side: the scan may miss a shallow pair the sector's label has, or
+  // resolve one its label lacks (extrema move with the position inside a sector).
+  // A scan misses more than it invents: most deletions go to the sector's side.
+  const int scan_side = std::min(1, o.max_deleted_pairs);
+  const int sector_side = o.max_deleted_pairs - scan_side;
+  const std::vector<Variant> scan_variants = variants(l.label, scan_side);
+  // Only M m pairs are ever deleted: a sector whose label has other D and c counts cannot
+  // match, and is skipped before its variants are built.
+  const auto count = [](const std::string& x, char c) { return std::count(x.begin(), x.end(), c); };
+  for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
+    const Sector& sec = sectors.sectors[s];
+    if (count(sec.label, 'D') != count(l.label, 'D') ||
+        count(sec.label, 'c') != count(l.label, 'c')) {
+      continue;
+    }
+    for (const Variant& sv : variants(sec.label, sector_side)) {
+      for (const Variant& qv : scan_variants) {
+        const int len = static_cast<int>(qv.label.size());
+        if (static_cast<int>(sv.label.size()) != len || len == 0) continue;
+        const int deleted = (static_cast<int>(sec.label.size()) - len) / 2 +
+                            (static_cast<int>(l.label.size()) - len) / 2;
+        if (deleted > o.max_deleted_pairs) continue;
+        // Every turn that matches: a periodic label (a rectangle's mMmMmMmM) matches several,
+        // and only the right one puts the vertices where the scan sees them.
+        for (int k = 0; k < len; ++k) {
+          bool equal = true;
+          for (int j = 0; j < len && equal; ++j) equal = qv.label[j] == sv.label[(j + k) % len];
+          if (!equal) continue;
+          std::vector<Eigen::Vector2d> local, world;
+          for (int j = 0; j < len; ++j) {
+            if (qv.label[j] != 'M') continue;
+            const int feature = sec.features[sv.index[(j + k) % len]];
+            if (feature < 0) continue;
+            local.push_back(locate_vertex(pts, l.beam[qv.index[j]], o.line_points));
+            world.push_back(sectors.vertices[feature]);
+          }
+          if (local.size() < 2) continue;
+          const std::optional<Pose2> fitted = trimmed_fit(local, world);
+          if (!fitted) continue;
+          const Pose2 pose = *fitted;
+          if (sectors.sector_at({pose.x, pose.y}) < 0) continue;  // off the free space
+          found.push_back({static_cast<int>(s), pose, deleted, static_cast<int>(local.size()),
+                           residual_at(pose), local});
+        }
+      }
+    }
+  }
+  // Partial views (seed 000's assumption (ii) failing: too few beams on a far, short or
+  // grazing edge) add or drop extrema between the jumps but keep the jumps. A sector whose D c
+  // skeleton is the scan's, turned, gives correspondences from its D vertices (the occluding
+  // corners, read at the near side of each jump: within a beam step) and from the M vertices
+  // of the runs between jumps that hold as many M as the scan's; polish() then fits the pose
+  // to every reading.
+  // A jump can also come or go: a wall seen at a grazing angle by coarse beams jumps by more
+  // than epsilon_T between neighbours, a narrow gap falls between two beams. Up to
+  // max_deleted_jumps neighbouring D c pairs of either skeleton are left out.
+  const std::vector<int> scan_skeleton = skeleton(l.label);
+  if (o.skeleton_matching && scan_skeleton.size() >= 2) {
+    const auto jump_variants = skeleton_variants(l.label, scan_skeleton, o.max_deleted_jumps);
+    // The correspondences of the scan's skeleton qa turned by k onto the sector's sa.
+    const auto try_match = [&](std::size_t s, const std::vector<int>& qa,
+                               const std::vector<int>& sa, int deleted) {
+      const Sector& sec = sectors.sectors[s];
+      const int ks = static_cast<int>(qa.size());
+      for (int k = 0; k < ks; ++k) {
+        bool equal = true;
+        for (int j = 0; j < ks && equal; ++j) equal = l.label[qa[j]] == sec.label[sa[(j + k) % ks]];
+        if (!equal) continue;
+        std::vector<Eigen::Vector2d> local, world;
+        for (int j = 0; j < ks; ++j) {
+          const int a = qa[j], b = sa[(j + k) % ks];
+          if (l.label[a] == 'D' && sec.features[b] >= 0) {
+            local.push_back(pts[l.beam[a]]);
+            world.push_back(sectors.vertices[sec.features[b]]);
+          }
+          const auto ms = maxima_between(l.label, a, qa[(j + 1) % ks]);
+          const auto mv = maxima_between(sec.label, b, sa[(j + k + 1) % ks]);
+          if (ms.size() != mv.size()) continue;
+          for (std::size_t q = 0; q < ms.size(); ++q) {
+            if (sec.features[mv[q]] < 0) continue;
+            local.push_back(locate_vertex(pts, l.beam[ms[q]], o.line_points));
+            world.push_back(sectors.vertices[sec.features[mv[q]]]);
+          }
+        }
+        if (local.size() < 2) continue;
+        const std::optional<Pose2> rough = trimmed_fit(local, world);
+        if (!rough) continue;
+        const Pose2 pose = polished(*rough, true);
+        if (sectors.sector_at({pose.x, pose.y}) < 0) continue;
+        // Behind every label match: ties go to the seed's own matching.
+        found.push_back({static_cast<int>(s), pose, o.max_deleted_pairs + 1 + deleted,
+                         static_cast<int>(local.size()), residual_at(pose), local});
+      }
+    };
+    for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
+      const std::string& label = sectors.sectors[s].label;
+      const std::vector<int> sk = skeleton(label);
+      const std::size_t ks = scan_skeleton.size();
+      if (sk.size() == ks) try_match(s, scan_skeleton, sk, 0);
+      // One side's pairs left out, never both (that would match too much).
+      if (sk.size() < ks) {
+        for (const auto& qa : jump_variants) {
+          if (qa.size() == sk.size()) try_match(s, qa, sk, static_cast<int>(ks - qa.size()) / 2);
+        }
+      } else if (sk.size() > ks) {
+        for (const auto& sa : skeleton_variants(label, sk, o.max_deleted_jumps)) {
+          if (sa.size() == ks)
+            try_match(s, scan_skeleton, sa, static_cast<int>(sk.size() - ks) / 2);
+        }
+      }
+    }
+  }
+  if (found.empty()) return fix;
+  // Sectors whose labels match alike often give the same pose from the same vertices: among
+  // equal residuals, the candidate whose pose lies in the sector it matched names the sector.
+  const auto home = [&](const Candidate& c) {
+    return sectors.sector_at({c.pose.x, c.pose.y}) == c.sector ? 0 : 1;
+  };
+  const auto select = [&] {
+    return std::min_element(found.begin(), found.end(),
+                            [&](const Candidate& a, const Candidate& b) {
+                              if (a.residual != b.residual) return a.residual < b.residual;
+                              if (home(a) != home(b)) return home(a) < home(b);
+                              return a.deleted < b.deleted;
+                            });
+  };
+  // Look-alikes (seed 000 §4.1): the label names vertices by the sector they were read in, and
+  // a look-alike place whose sector's label came out otherwise (labels vary inside a sector)
+  // would never be tried. So the winner's two farthest located vertices are also put on every
+  // other pair of map vertices as far apart; a placement that lands the other located vertices
+  // on map vertices too is polished and scored like any candidate.
+  if (o.lookalike_search) {
+    const Candidate winner = *select();
+    const auto& v = sectors.vertices;
+    const auto near_vertex = [&](const Pose2& at, const Eigen::Vector2d& p) {
+      const Eigen::Vector2d w = Eigen::Rotation2Dd(at.theta) * p + Eigen::Vector2d(at.x, at.y);
+      return std::any_of(v.begin(), v.end(),
+                         [&](const Eigen::Vector2d& u) { return (u - w).norm() <= allowance(p); });
+    };
+    // Only the located corners that land on a map vertex at the winner's own pose: the
+    // polish may have moved it from where its rough fit put a wall point.
+    std::vector<Eigen::Vector2d> q;
+    for (const auto& p : winner.located) {
+      if (near_vertex(winner.pose, p)) q.push_back(p);
+    }
+    if (q.size() < 2) q.clear();
+    std::size_t a = 0, b = 1;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      for (std::size_t j = i + 1; j < q.size(); ++j) {
+        if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
+      }
+    }
+    const double d = q.empty() ? 0.0 : (q[a] - q[b]).norm();
+    const double tolerance =
+        q.empty() ? 0.0 : 2.0 * std::max(allowance(q[a]), allowance(q[b])) - 0.3;
+    for (std::size_t i = 0; i < v.size() && d > 0.3; ++i) {
+      for (std::size_t j = 0; j < v.size(); ++j) {
+        if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
+        const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
+        const bool lands = std::all_of(
+            q.begin(), q.end(), [&](const Eigen::Vector2d& p) { return near_vertex(rough, p); });
+        if (!lands) continue;
+        const Pose2 pose = polished(rough, false);
+        const int sector = sectors.sector_at({pose.x, pose.y});
+        if (sector < 0) continue;
+        found.push_back({sector, pose, winner.deleted + 1, winner.matched, residual_at(pose), q});
+      }
+    }
+  }
+  fix.candidates = static_cast<int>(found.size());
+  const auto best = select();
+  fix.found = true;
+  fix.sector = best->sector;
+  // The sector named is one whose label matched with (nearly) this pose and that holds it,
+  // when there is one: a neighbour's alike label may explain the scan a hair better.
+  if (home(*best) != 0) {
+    for (const auto& c : found) {
+      if (home(c) == 0 && std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) < 0.02 &&
+          std::abs(normalize_angle(c.pose.theta - best->pose.theta)) < 0.01) {
+        fix.sector = c.sector;
+        break;
+      }
+    }
+  }
+  fix.pose = best->pose;
+  fix.deleted_pairs = best->deleted;
+  fix.matched_m = best->matched;
+  fix.residual_m = best->residual;
+  // A distinct pose that explains the scan about as well: in another sector with the same
+  // label (seed 000 §4.1), or in the same sector of a symmetric room (a rectangle's twin pose
+  // turned by 180 deg).
+  // The alternatives are those poses, best first, each distinct from all before it.
+  const auto distinct = [](const Pose2& p, const Pose2& q) {
+    return std::hypot(p.x - q.x, p.y - q.y) > 0.3 ||
+           std::abs(normalize_angle(p.theta - q.theta)) > 0.26;
+  };
+  std::vector<const Candidate*> close;
+  for (const auto& c : found) {
+    if (c.residual <= best->residual + o.ambiguity_residual_m) close.push_back(&c);
+  }
+  std::stable_sort(close.begin(), close.end(), [](const Candidate* a, const Candidate* b) {
+    return a->residual < b->residual;
+  });
+  fix.alternatives.push_back({best->pose, best->residual});
+  for (const Candidate* c : close) {
+    if (std::all_of(fix.alternatives.begin(), fix.alternatives.end(),
+                    [&](const SectorFix::Alternative& x) { return distinct(x.pose, c->pose); })) {
+      fix.alternatives.push_back({c->pose, c->residual});
+    }
+  }
+  fix.ambiguous = fix.alternatives.size() > 1;
+  fix.covariance = pose_covariance(returns, walls, fix.pose);
+  return fix;
+}
+
+}  // namespace gridloc

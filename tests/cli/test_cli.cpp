@@ -1,0 +1,626 @@
+// End-to-end tests of the gridloc command-line tool (examples/gridloc_cli): simulate ->
+// localize round trip, eval JSON, and the one-line error contract (stderr, exit code 2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "cli_support.hpp"
+#include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "gridloc/engine/sectors/visibility_sectors.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+using test::TempDir;
+
+using test::CliRun;
+using test::expect_cli_error;
+using test::lines;
+using test::quote;
+using test::read_file;
+using test::run_cli;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // The tool finds bundled maps by name through this variable first.
+    ::setenv("GRIDLOC_DATA_DIR", test::maps_dir().c_str(), 1);
+  }
+  TempDir dir;
+  std::string map = test::map_path("room_rect");
+  std::string ring = test::ring_path();
+};
+
+TEST_F(Cli, SimulateThenLocalize) {
+  // The pose of the example must be free for the whole chair footprint.
+  const OccupancyMap m = load_ros_map(map);
+  const SonarRing sonar_ring = load_sonar_ring(ring);
+  const Pose2 pose{1.0, 1.0, 0.0};
+  for (double fx = -0.55; fx <= 0.55 + 1e-9; fx += 0.05) {
+    for (double fy = -0.35; fy <= 0.35 + 1e-9; fy += 0.05) {
+      const Pose2 g = m.geometry.to_grid_frame({pose.x + fx, pose.y + fy, 0.0});
+      const Cell c = m.geometry.cell_of(g.x, g.y);
+      ASSERT_TRUE(m.geometry.contains(c.ix, c.iy));
+      ASSERT_EQ(m.at(c.ix, c.iy), CellState::Free) << fx << "," << fy;
+    }
+  }
+
+  const std::string readings = dir.file("readings.json");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map) + " --ring " + quote(ring) +
+                                      " --pose 1,1,0 --out " + quote(readings));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  EXPECT_EQ(sim.out, "");
+  const auto written = nlohmann::json::parse(read_file(readings));
+  // The file holds exactly what the library simulates (doubles round-trip through JSON).
+  EXPECT_EQ(written.at("ranges_m").get<std::vector<double>>(), simulate_sonar(m, sonar_ring, pose));
+  EXPECT_EQ(written.at("pose").at("x").get<double>(), 1.0);
+
+  const CliRun loc = run_cli(dir, "localize --map " + quote(map) + " --ring " + quote(ring) +
+                                      " --readings " + quote(readings) + " --prior 1.2,0.9,0.2");
+  ASSERT_EQ(loc.status, 0) << loc.err;
+  EXPECT_EQ(loc.err, "");
+  const auto j = nlohmann::json::parse(loc.out);
+  const double x = j.at("pose").at("x"), y = j.at("pose").at("y"), t = j.at("pose").at("theta");
+  EXPECT_LE(std::hypot(x - 1.0, y - 1.0), 0.10) << loc.out;
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(t))), 7.0) << loc.out;
+  EXPECT_NEAR(j.at("theta_deg").get<double>(), rad2deg(t), 1e-9);
+  for (const char* key :
+       {"score", "normalized_score", "confidence", "alternatives", "stats", "timing"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  // The default strategy is the fastest exact one, branch and bound: one level, proven.
+  EXPECT_EQ(j.at("stats").at("levels").get<int>(), 1);
+  EXPECT_TRUE(j.at("stats").at("proven_optimal").get<bool>());
+  EXPECT_EQ(j.at("stats").at("upper_bound").get<double>(), j.at("score").get<double>());
+}
+
+TEST_F(Cli, SimulateToStdout) {
+  const CliRun r = run_cli(dir, "simulate --map " + quote(map) + " --pose 3,2,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("ranges_m").size(), 14u);
+}
+
+TEST_F(Cli, MissingMapFile) {
+  const std::string missing = dir.file("no_such_map.yaml");
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(missing) + " --readings " +
+                                    quote(readings) + " --prior 1,1,0"),
+                   missing);
+  expect_cli_error(run_cli(dir, "simulate --map " + quote(missing) + " --pose 1,1,0"), missing);
+}
+
+TEST_F(Cli, MalformedPrior) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  for (const std::string prior : {"1,2", "1,a,0", "1,2,3,4", "x"}) {
+    expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " +
+                                      quote(readings) + " --prior " + quote(prior)),
+                     "--prior");
+  }
+}
+
+TEST_F(Cli, ReadingsCountMismatch) {
+  const std::string readings = dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 3,2,0"),
+                   "expected 14");
+}
+
+TEST_F(Cli, MissingReadingsFileAndOption) {
+  const std::string missing = dir.file("none.json");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(missing) +
+                                    " --prior 3,2,0"),
+                   missing);
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --prior 3,2,0"), "--readings");
+}
+
+TEST_F(Cli, BadStrategyAndSubcommand) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --prior 3,2,0 --strategy fastest"),
+                   "fastest");
+  const CliRun r = run_cli(dir, "teleport");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
+}
+
+TEST_F(Cli, BadSearchOptionsAreNamed) {
+  const std::string readings =
+      dir.write("r.json", R"({"ranges_m": [2,2,2,2,2,2,2,2,2,2,2,2,2,2]})");
+  const std::string base =
+      "localize --map " + quote(map) + " --readings " + quote(readings) + " --prior 3,2,0";
+  // room_rect is 7 x 5.5 m with its walls: a +-50 m window is larger than the map.
+  expect_cli_error(run_cli(dir, base + " --window-xy 50"), "larger than the map");
+  expect_cli_error(run_cli(dir, base + " --budget-ms -1"), "--budget-ms");
+  expect_cli_error(run_cli(dir, base + " --budget-ms 5 --strategy multires"),
+                   "--budget-ms needs --strategy bnb");
+  expect_cli_error(run_cli(dir, base + " --scan-model beams"), "--scan-model");
+  expect_cli_error(run_cli(dir, base + " --free-samples 0"), "--free-samples");
+}
+
+TEST_F(Cli, ScanModelsAndMultiresReportWhatTheyProve) {
+  // A 90-beam scan cast by hand in room_rect (6 x 4.5 m inside) from (3, 2) in the room's
+  // own frame, heading 0: the nearest of the walls and the two boxes against them (desk,
+  // cupboard) along each beam. maps/generate_maps.py puts the room's corner at world
+  // (0.15, 0.15) (map origin -0.5 plus 0.5 m margin and 0.15 m wall), so the truth is (3.15, 2.15).
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  const Box boxes[] = {{0.5, 3.8, 1.9, 4.5}, {5.5, 0.6, 6.0, 1.8}};
+  std::string csv = "# angle_rad,range_m\n";
+  for (int k = 0; k < 90; ++k) {
+    const double a = -std::numbers::pi + k * 2.0 * std::numbers::pi / 90;
+    const double c = std::cos(a), s = std::sin(a);
+    double r = 100.0;
+    if (c > 1e-9) r = std::min(r, 3.0 / c);
+    if (c < -1e-9) r = std::min(r, -3.0 / c);
+    if (s > 1e-9) r = std::min(r, 2.5 / s);
+    if (s < -1e-9) r = std::min(r, -2.0 / s);
+    for (const Box& b : boxes) {  // slab test of the ray from (3, 2)
+      double t0 = 0.0, t1 = 100.0;
+      for (const auto& [o, d, lo, hi] : {std::tuple{3.0, c, b.x0, b.x1}, {2.0, s, b.y0, b.y1}}) {
+        if (std::abs(d) < 1e-12) {
+          if (o < lo || o > hi) t0 = 1e9;
+          continue;
+        }
+        const double ta = (lo - o) / d, tb = (hi - o) / d;
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+      }
+      if (t0 <= t1) r = std::min(r, t0);
+    }
+    csv += std::to_string(a) + "," + std::to_string(r) + "\n";
+  }
+  const std::string scan = dir.write("room.csv", csv);
+  for (const std::string model : {"samples", "rays", "hits"}) {
+    const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                      " --prior 3.35,2.0,0.1 --scan-model " + model);
+    ASSERT_EQ(r.status, 0) << model << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const double x = j.at("pose").at("x"), y = j.at("pose").at("y");
+    EXPECT_LE(std::hypot(x - 3.15, y - 2.15), 0.05) << model << ": " << r.out;
+    EXPECT_TRUE(j.at("stats").at("proven_optimal").get<bool>()) << model;
+  }
+  const CliRun m = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                    " --prior 3.35,2.0,0.1 --strategy multires --json");
+  ASSERT_EQ(m.status, 0) << m.err;
+  const auto j = nlohmann::json::parse(m.out);
+  EXPECT_FALSE(j.at("stats").at("proven_optimal").get<bool>());  // a heuristic proves nothing
+  EXPECT_TRUE(j.at("stats").at("upper_bound").is_null());
+}
+
+TEST_F(Cli, GlobalLocalizationWithoutPrior) {
+  const std::string readings = dir.file("readings.json");
+  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1,1,0 --out " + quote(readings))
+                .status,
+            0);
+  const CliRun r = run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --global --strategy bnb");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double x = j.at("pose").at("x"), y = j.at("pose").at("y"), t = j.at("pose").at("theta");
+  EXPECT_LE(std::hypot(x - 1.0, y - 1.0), 0.10) << r.out;
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(t))), 7.0) << r.out;
+  // The lattice winner and the window searched are reported beside the refined pose.
+  EXPECT_TRUE(j.at("lattice").contains("pose"));
+  EXPECT_NEAR(j.at("window").at("half_theta").get<double>(), std::numbers::pi, 1e-12);
+
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --global --prior 1,1,0"),
+                   "--global");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings)),
+                   "--prior");
+  const std::string scan = dir.write("s.csv", "0.0,1.0\n");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map) + " --readings " + quote(readings) +
+                                    " --scan " + quote(scan) + " --prior 1,1,0"),
+                   "--scan");
+}
+
+TEST_F(Cli, EvalJson) {
+  const CliRun r = run_cli(dir, "eval --trials 2 --maps room_rect --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("trials").get<int>(), 2);
+  const auto& configs = j.at("configurations");
+  ASSERT_TRUE(configs.is_array());
+  ASSERT_EQ(configs.size(), 4u);
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& c : configs) {
+    for (const char* key : {"local", "global", "success_rate", "mean_position_error_m",
+                            "mean_heading_error_deg", "median_ms"}) {
+      EXPECT_TRUE(c.contains(key)) << key << " in " << c.dump();
+    }
+    seen.insert({c.at("local").get<std::string>(), c.at("global").get<std::string>()});
+    const double rate = c.at("success_rate");
+    EXPECT_GE(rate, 0.0);
+    EXPECT_LE(rate, 1.0);
+  }
+  EXPECT_EQ(
+      seen,
+      (std::set<std::pair<std::string, std::string>>{
+          {"turned", "raw"}, {"turned", "thinned"}, {"oriented", "raw"}, {"oriented", "thinned"}}));
+}
+
+/// A scan as the `angle_rad,range_m` lines `localize --scan` reads.
+std::string write_scan_csv(test::TempDir& dir, const std::string& name, const RangeScan& s) {
+  std::string csv;
+  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
+  }
+  return dir.write(name, csv);
+}
+
+TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
+  // A 360-beam scan simulated on the small apartment, written as angle,range lines.
+  const std::string map_file = test::map_path("apartment_small");
+  const OccupancyMap m = load_ros_map(map_file);
+  const Pose2 truth{6.5, 4.5, -2.0};
+  const std::string scan =
+      write_scan_csv(dir, "apartment.csv", simulate_scan(m, truth, 360, 8.0, 0.01, 3));
+  for (const std::string estimator : {"icp", "correlation+icp"}) {
+    const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
+                                      " --prior 6.7,4.3,-1.8 --estimator " + estimator);
+    ASSERT_EQ(r.status, 0) << estimator << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.at("estimator"), estimator);
+    EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - truth.x,
+                         j.at("pose").at("y").get<double>() - truth.y),
+              0.02)
+        << estimator << ": " << r.out;
+    EXPECT_EQ(j.at("verdict"), "localized") << r.out;
+  }
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
+                                    " --global --estimator icp"),
+                   "--prior");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map_file) + " --pose 6.5,4.5,-2");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  expect_cli_error(run_cli(dir, "localize --map " + quote(map_file) + " --readings " +
+                                    quote(readings) + " --prior 6.5,4.5,-2 --estimator icp"),
+                   "laser scan");
+}
+
+TEST_F(Cli, APolygonMapFeedsTheCorrelationEngine) {
+  const std::string map_file = test::maps_dir() + "/polygons/room_l.yaml";
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(map_file) + " --pose 1.5,1.5,0.3");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --readings " +
+                                    quote(readings) + " --prior 1.7,1.3,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 1.5,
+                       j.at("pose").at("y").get<double>() - 1.5),
+            0.1)
+      << r.out;
+  const std::string open = dir.write("open.yaml", "boundary: [[0, 0], [4, 0], [4, 3], [0, 3]]\n");
+  expect_cli_error(run_cli(dir, "localize --map " + quote(open) + " --readings " + quote(readings) +
+                                    " --prior 1,1,0"),
+                   "not closed");
+}
+
+TEST_F(Cli, LocalizeWithVisibilitySectors) {
+  // The L-shaped room as a polygon map and a noise-free 360-beam scan from (1.2, 1.6, 0.7).
+  const std::string poly =
+      dir.write("l.yaml", "boundary: [[0, 0], [7, 0], [7, 3], [3, 3], [3, 6], [0, 6], [0, 0]]\n");
+  const PolygonMap m = load_polygon_map(poly);
+  const Pose2 truth{1.2, 1.6, 0.7};
+  const std::string scan = write_scan_csv(dir, "l.csv", polygon_scan(m, truth, 360, 20.0));
+  const CliRun r = run_cli(dir, "localize --map " + quote(poly) + " --scan " + quote(scan) +
+                                    " --max-range 20 --global --estimator sectors");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("estimator"), "sectors");
+  EXPECT_EQ(j.at("verdict"), "localized") << r.out;
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - truth.x,
+                       j.at("pose").at("y").get<double>() - truth.y),
+            0.02)
+      << r.out;
+  expect_cli_error(run_cli(dir, "localize --map " + quote(test::map_path("room_l")) + " --scan " +
+                                    quote(scan) + " --max-range 20 --global --estimator sectors"),
+                   "polygon map");
+  // The fix refined by the local correlation search: the same verdict, a pose as close.
+  const CliRun refined =
+      run_cli(dir, "localize --map " + quote(poly) + " --scan " + quote(scan) +
+                       " --max-range 20 --global --estimator sectors+correlation");
+  ASSERT_EQ(refined.status, 0) << refined.err;
+  const auto k = nlohmann::json::parse(refined.out);
+  EXPECT_EQ(k.at("estimator"), "sectors+correlation");
+  EXPECT_EQ(k.at("verdict"), "localized") << refined.out;
+  EXPECT_LE(std::hypot(k.at("pose").at("x").get<double>() - truth.x,
+                       k.at("pose").at("y").get<double>() - truth.y),
+            0.03)
+      << refined.out;
+}
+
+TEST_F(Cli, EvalOnPolygonMapsComparesSectorsAndCorrelation) {
+  // The sector protocol: the same global trials for every estimator, the contract's fields.
+  const CliRun r = run_cli(dir,
+                           "eval --estimator sectors,correlation --maps polygons/room_l "
+                           "--trials 4 --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("protocol"), "sectors");
+  EXPECT_EQ(j.at("trials"), 4);
+  EXPECT_TRUE(j.at("prior").is_null());
+  ASSERT_EQ(j.at("configurations").size(), 2u);
+  EXPECT_EQ(j.at("configurations")[0].at("estimator"), "sectors");
+  EXPECT_EQ(j.at("configurations")[1].at("estimator"), "correlation");
+  for (const auto& c : j.at("configurations")) {
+    const double id = c.at("sector_identification_rate");
+    EXPECT_GE(id, 0.0);
+    EXPECT_LE(id, 1.0);
+    EXPECT_GE(c.at("successes").get<int>(), 3) << c.dump();  // measured: 4 and 4
+    EXPECT_EQ(c.at("localized").get<int>() + c.at("ambiguous").get<int>() +
+                  c.at("not_localized").get<int>(),
+              4);
+  }
+  // A sector estimator alone defaults to the bundled polygon maps; --trials-out writes a row
+  // per trial and estimator.
+  const std::string csv = dir.file("trials.csv");
+  const CliRun t =
+      run_cli(dir, "eval --estimator sectors --trials 1 --quiet --trials-out " + quote(csv));
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.out.find("office.yaml"), std::string::npos) << t.out;
+  EXPECT_EQ(lines(read_file(csv)).size(), 5u);  // the header and 4 maps
+  // The seed 001 protocol names the field too, null.
+  const CliRun s = run_cli(dir, "eval --maps room_rect --trials 1 --json --quiet");
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_TRUE(nlohmann::json::parse(s.out)
+                  .at("configurations")[0]
+                  .at("sector_identification_rate")
+                  .is_null());
+}
+
+TEST_F(Cli, EvalSectorProtocolErrors) {
+  expect_cli_error(run_cli(dir, "eval --estimator sectors --maps room_l --trials 1"),
+                   {"polygon maps"});
+  expect_cli_error(run_cli(dir, "eval --maps polygons/room_l,room_l --trials 1"), {"mixes"});
+  expect_cli_error(run_cli(dir, "eval --maps polygons/room_l --noisy --trials 1"), {"--noisy"});
+  expect_cli_error(run_cli(dir, "eval --estimator icp --maps polygons/room_l --trials 1"),
+                   {"icp", "prior"});
+  expect_cli_error(run_cli(dir, "eval --estimator sectors --laser-beams 10 --trials 1"), {"beams"});
+  expect_cli_error(run_cli(dir, "eval --estimator sectors --maps polygons/nowhere --trials 1"),
+                   {"nowhere.yaml"});
+}
+
+TEST_F(Cli, HallwayReportsSeed004sFigures) {
+  const CliRun r = run_cli(dir, "hallway --seeds 5 --noise 0.02 --outliers scattered --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("seeds"), 5);
+  EXPECT_EQ(j.at("successes"), 5);  // 100 of 100 over seeds 1-100 (README)
+  EXPECT_LT(j.at("mean_error_x_mm").get<double>(), 15.0);
+  EXPECT_GT(j.at("mean_iterations").get<double>(), 1.0);
+  expect_cli_error(run_cli(dir, "hallway --outliers rain"), "none, scattered or appearing");
+  expect_cli_error(run_cli(dir, "hallway --seeds 0"), "seeds");
+}
+
+TEST_F(Cli, EvalComparesEstimatorsWithALaser) {
+  const CliRun r = run_cli(dir,
+                           "eval --trials 3 --maps room_l --laser --estimators "
+                           "correlation,icp,correlation+icp --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("sensor"), "laser");
+  const auto& configs = j.at("configurations");
+  ASSERT_EQ(configs.size(), 3u);
+  EXPECT_EQ(configs[0].at("estimator"), "correlation");
+  EXPECT_EQ(configs[1].at("estimator"), "icp");
+  EXPECT_EQ(configs[2].at("estimator"), "correlation+icp");
+  expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators icp --quiet"),
+                   "--laser");
+  expect_cli_error(run_cli(dir, "eval --trials 1 --maps room_l --estimators pf --quiet"),
+                   "correlation+icp, sectors or sectors+correlation");
+}
+
+TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
+  const std::string csv = (dir.path() / "trials.csv").string();
+  const CliRun r = run_cli(
+      dir, "eval --noisy --trials 12 --maps room_l --json --quiet --trials-out " + quote(csv));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j.at("noisy").get<bool>());
+  for (const auto& c : j.at("configurations")) {
+    // A number, or null when a configuration had no failure (or no success) to separate.
+    for (const char* key : {"auroc", "failures_flagged_at_95_recall"}) {
+      ASSERT_TRUE(c.contains(key)) << key << " in " << c.dump();
+      EXPECT_TRUE(c.at(key).is_number() || c.at(key).is_null()) << c.dump();
+    }
+  }
+  std::ifstream in(csv);
+  ASSERT_TRUE(in) << csv;
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find("success,wrong_prior,furniture"), std::string::npos) << header;
+  EXPECT_NE(header.find("confidence"), std::string::npos) << header;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 12 * 4);  // every trial of the four configurations
+}
+
+// simulate --firings writes consecutive firings; localize filters them (the echo filter)
+// and says which sonars it rejected.
+TEST_F(Cli, SeveralFiringsGoThroughTheEchoFilter) {
+  const std::string room_l = test::map_path("room_l");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) +
+                                      " --pose 2.4,1.6,0.3 --sigma 0.02 --crosstalk 0.3 "
+                                      "--firings 3 --seed 4");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const auto written = nlohmann::json::parse(sim.out);
+  ASSERT_EQ(written.at("firings_m").size(), 3u);
+  EXPECT_EQ(written.at("ranges_m"), written.at("firings_m")[0]);
+  const std::string readings = dir.write("f.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(room_l) + " --readings " +
+                                    quote(readings) + " --prior 2.6,1.5,0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("echo_filter").at("firings").get<int>(), 3);
+  EXPECT_FALSE(j.at("echo_filter").at("rejected_sonars").empty()) << r.out;  // 30 % crosstalk
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 2.4,
+                       j.at("pose").at("y").get<double>() - 1.6),
+            0.10)
+      << r.out;
+  expect_cli_error(run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2,2,0 --firings 0"),
+                   "--firings");
+}
+
+TEST_F(Cli, RelationsOnTheIntelLog) {
+  const std::string d =
+      std::string(GRIDLOC_TEST_SHARED_DIR) + "/datasets/xiaofeng419_SLAM-2D-LIDAR-SCAN";
+  const std::string log = d + "/intel.gfs.log", rel = d + "/intel.relations";
+  expect_cli_error(
+      run_cli(dir, "relations --log " + quote(dir.file("none.log")) + " --relations " + quote(rel)),
+      "not found");
+  expect_cli_error(run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
+                                    " --estimator particles"),
+                   "correlation+icp, sectors or sectors+correlation");
+  if (!std::filesystem::exists(log)) GTEST_SKIP() << "../shared is absent: " << log;
+  const CliRun r = run_cli(dir, "relations --log " + quote(log) + " --relations " + quote(rel) +
+                                    " --time-offset 976052857.337311 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  // 118 relations fall on scans; 12 of them put both ends on one scan and are dropped.
+  EXPECT_EQ(j.at("pairs").get<int>(), 106);
+  for (const char* key : {"translation_error_m", "rotation_error_deg"}) {
+    EXPECT_TRUE(j.at(key).at("mean").is_number()) << r.out;
+    EXPECT_TRUE(j.at(key).at("std").is_number()) << r.out;
+  }
+  // Measured: 2.6 cm, 0.59 deg and 2 failures (README "Real laser data"); the bounds catch a
+  // matcher that stops working on real scans, as the first version did (23 cm, 58 failures).
+  EXPECT_LT(j.at("translation_error_m").at("mean").get<double>(), 0.05) << r.out;
+  EXPECT_LT(j.at("rotation_error_deg").at("mean").get<double>(), 1.0) << r.out;
+  EXPECT_LE(j.at("failures").get<int>(), 12) << r.out;
+  EXPECT_LE(j.at("not_converged").get<int>(), j.at("failures").get<int>()) << r.out;
+}
+
+TEST_F(Cli, LocalizeGivesTheVerdict) {
+  const std::string room_l = test::map_path("room_l");
+  const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2.4,1.6,0.3");
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const std::string readings = dir.write("r.json", sim.out);
+  const CliRun r = run_cli(dir, "localize --map " + quote(room_l) + " --readings " +
+                                    quote(readings) + " --prior 2.6,1.5,0.4");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("verdict").get<std::string>(), "localized");
+  EXPECT_FALSE(j.at("ambiguous").get<bool>());
+  const double confidence = j.at("confidence");
+  const auto& parts = j.at("confidence_parts");
+  const double product = parts.at("fit").get<double>() * parts.at("agreement").get<double>() *
+                         parts.at("distinctness").get<double>() *
+                         parts.at("sharpness").get<double>();
+  EXPECT_NEAR(confidence, product, 1e-12);
+  EXPECT_EQ(j.at("covariance").size(), 3u);
+}
+
+TEST_F(Cli, SectorsOfARectangle) {
+  // A plain rectangle is one sector: its four corners M and its four walls, seen square on, m,
+  // from east counter-clockwise. (maps/polygons/room_rect.yaml is not plain: its desk and
+  // cupboard notches cut it into many sectors, see the next test.)
+  const std::string rect =
+      dir.write("rect.yaml", "boundary: [[0, 0], [6, 0], [6, 4], [0, 4], [0, 0]]\n");
+  const CliRun r = run_cli(dir, "sectors --polygons " + quote(rect) + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("polygons").get<std::string>(), rect);
+  ASSERT_EQ(j.at("sector_count").get<int>(), 1);
+  ASSERT_EQ(j.at("sectors").size(), 1u);
+  EXPECT_EQ(j.at("ambiguous_count").get<int>(), 0);
+  const auto& s = j.at("sectors")[0];
+  EXPECT_EQ(s.at("id").get<int>(), 1);
+  EXPECT_EQ(s.at("label").get<std::string>(), "mMmMmMmM");
+  EXPECT_FALSE(s.at("ambiguous").get<bool>());
+  EXPECT_NEAR(s.at("area_m2").get<double>(), 24.0, 1e-9);
+  EXPECT_EQ(s.at("visible_vertices").size(), 4u);
+  const double x = s.at("representative").at("x"), y = s.at("representative").at("y");
+  EXPECT_TRUE(x > 0.0 && x < 6.0 && y > 0.0 && y < 4.0) << s.dump();
+  // Eqs. (10)-(11): 3 readings per edge need more than 2.
+  EXPECT_GT(s.at("n_min").get<int>(), s.at("n_min_two").get<int>());
+  EXPECT_GT(s.at("n_min_two").get<int>(), 0);
+  EXPECT_EQ(j.at("n_min_two"), s.at("n_min_two"));
+
+  // The table: a title line, the header, one row per sector, the summary.
+  const CliRun t = run_cli(dir, "sectors --polygons " + quote(rect));
+  ASSERT_EQ(t.status, 0) << t.err;
+  const auto l = lines(t.out);
+  ASSERT_EQ(l.size(), 4u) << t.out;
+  EXPECT_NE(l[1].find("Label"), std::string::npos) << l[1];
+  EXPECT_NE(l[2].find("mMmMmMmM"), std::string::npos) << l[2];
+  EXPECT_NE(l[2].find("24.00"), std::string::npos) << l[2];
+  EXPECT_NE(l[3].find("1 sector, 0 ambiguous"), std::string::npos) << l[3];
+}
+
+TEST_F(Cli, SectorsMatchComputeSectors) {
+  // The hand-derived L of test_visibility_sectors.cpp: the reflex corner's five sectors.
+  const std::string l_room =
+      dir.write("l.yaml", "boundary: [[0, 0], [7, 0], [7, 3], [3, 3], [3, 6], [0, 6], [0, 0]]\n");
+  // And the bundled maps, obstacles and notches included: the command reports what
+  // compute_sectors() finds, sector for sector.
+  for (const std::string& file : {l_room, test::maps_dir() + "/polygons/room_l.yaml",
+                                  test::maps_dir() + "/polygons/room_rect.yaml"}) {
+    const CliRun r = run_cli(dir, "sectors --polygons " + quote(file) + " --json");
+    ASSERT_EQ(r.status, 0) << file << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const SectorMap s = compute_sectors(load_polygon_map(file));
+    ASSERT_EQ(j.at("sector_count").get<std::size_t>(), s.sectors.size()) << file;
+    ASSERT_EQ(j.at("sectors").size(), s.sectors.size()) << file;
+    int ambiguous = 0;
+    for (std::size_t k = 0; k < s.sectors.size(); ++k) {
+      const auto& js = j.at("sectors")[k];
+      EXPECT_EQ(js.at("id").get<std::size_t>(), k + 1);
+      EXPECT_EQ(js.at("label").get<std::string>(), s.sectors[k].label) << file << " " << k;
+      EXPECT_EQ(js.at("ambiguous").get<bool>(), s.sectors[k].ambiguous) << file << " " << k;
+      EXPECT_EQ(js.at("visible_vertices").size(), s.sectors[k].visible.size());
+      ambiguous += s.sectors[k].ambiguous ? 1 : 0;
+    }
+    EXPECT_EQ(j.at("ambiguous_count").get<int>(), ambiguous) << file;
+    EXPECT_EQ(j.at("n_min_two").get<int>(), s.n_min_two()) << file;
+    if (file == l_room) {
+      EXPECT_EQ(s.sectors.size(), 5u);
+    } else {
+      EXPECT_GT(s.sectors.size(), 5u) << file << ": its notches and obstacles cut it further";
+    }
+  }
+}
+
+TEST_F(Cli, SectorsErrors) {
+  const std::string missing = dir.file("no_such_room.yaml");
+  expect_cli_error(run_cli(dir, "sectors --polygons " + quote(missing)), {"no_such_room.yaml"});
+  expect_cli_error(run_cli(dir, "sectors --polygons " + quote(missing) + " --json"),
+                   {"no_such_room.yaml"});
+  expect_cli_error(run_cli(dir, "sectors"), {"--polygons"});
+  const std::string rect =
+      dir.write("rect.yaml", "boundary: [[0, 0], [6, 0], [6, 4], [0, 4], [0, 0]]\n");
+  expect_cli_error(run_cli(dir, "sectors --polygons " + quote(rect) + " --cell 0"), {"--cell"});
+  const std::string open = dir.write("open.yaml", "boundary: [[0, 0], [4, 0], [4, 3], [0, 3]]\n");
+  expect_cli_error(run_cli(dir, "sectors --polygons " + quote(open)), {"open.yaml", "not closed"});
+  // An --out that cannot be a folder (a file is in the way) is named.
+  const std::string file = dir.write("a_file", "x");
+  const std::string out = file + "/sectors";
+  expect_cli_error(run_cli(dir, "sectors --polygons " + quote(rect) + " --out " + quote(out)),
+                   {"--out", out});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -1,0 +1,108 @@
+// The score volume of a window and the covariance of the peak (CorrelationEstimator).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+TEST(ScoreVolume, HoldsEveryPoseAndTheExactWinner) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Pose2 truth{2.4, 1.6, 0.3};
+  const Observation obs{simulate_sonar(map, ring, truth)};
+  SearchWindow w;
+  w.center = {2.6, 1.5, 0.5};
+  w.half_xy = 0.4;
+  w.half_theta = 0.35;
+  const CorrelationEstimator est(map, ring);  // bnb
+  const ScoreVolume v = est.score_volume(obs, w);
+  ASSERT_EQ(v.nx, 9);
+  ASSERT_EQ(v.ny, 9);
+  ASSERT_EQ(v.headings, 9);  // +-0.35 rad at 5 deg: +-4 steps
+  ASSERT_EQ(v.scores.size(), 729u);
+  ASSERT_EQ(v.mass.size(), 9u);
+  // The volume's maximum is its winner, and the winner is the estimator's lattice pose.
+  EXPECT_EQ(*std::max_element(v.scores.begin(), v.scores.end()), v.best.score);
+  EXPECT_EQ(v.at(v.best.ix, v.best.iy, v.best.it), v.best.score);
+  const Estimate e = est.estimate(obs, w);
+  EXPECT_EQ(e.score, v.best.score);
+  const Pose2 p = v.pose(v.best.ix, v.best.iy, v.best.it);
+  EXPECT_NEAR(p.x, e.lattice_pose.x, 1e-9);
+  EXPECT_NEAR(p.y, e.lattice_pose.y, 1e-9);
+  EXPECT_NEAR(normalize_angle(p.theta - e.lattice_pose.theta), 0.0, 1e-9);
+  for (double m : v.mass) EXPECT_GE(m, v.best.score);  // no score beats sum |L|
+}
+
+TEST(ScoreVolume, BadWindowIsTheSameErrorAsEstimate) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const CorrelationEstimator est(map, ring);
+  SearchWindow w;
+  w.center = {-50.0, 1.0, 0.0};
+  test::expect_error(
+      [&] {
+        est.score_volume({simulate_sonar(map, ring, {2, 2, 0})}, w);
+      },
+      {"prior", "outside the map"});
+}
+
+/// A corridor along x: two walls 1.6 m apart, 12 m long, open (unknown) at both ends, so a
+/// ring in its middle sees the same walls wherever it stands along it.
+OccupancyMap corridor() {
+  GridGeometry g;
+  g.resolution = 0.05;
+  g.width = 240;
+  g.height = 40;
+  OccupancyMap m(g, CellState::Free);
+  for (int ix = 0; ix < g.width; ++ix) {
+    for (int iy : {3, 4, 35, 36}) m.at(ix, iy) = CellState::Occupied;
+    for (int iy : {0, 1, 2, 37, 38, 39}) m.at(ix, iy) = CellState::Unknown;
+  }
+  return m;
+}
+
+TEST(PeakCovariance, LargerAlongACorridorThanAcrossIt) {
+  const OccupancyMap map = corridor();
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Pose2 truth{6.0, 1.04, 0.0};  // near a cell centre across (0.1 m cells)
+  const Observation obs{simulate_sonar(map, ring, truth)};
+  SearchWindow w;
+  w.center = {6.1, 1.05, 0.05};
+  for (SearchStrategy s : {SearchStrategy::BranchAndBound, SearchStrategy::Exhaustive}) {
+    CorrelationOptions o;
+    o.strategy = s;
+    const Estimate e = CorrelationEstimator(map, ring, o).estimate(obs, w);
+    const Eigen::Matrix3d& c = e.covariance;
+    EXPECT_GT(c(0, 0), 4.0 * c(1, 1)) << to_string(s) << "\n" << c;
+    EXPECT_TRUE(c.isApprox(c.transpose())) << c;
+    EXPECT_GT(c.determinant(), 0.0) << c;  // positive definite: the quantization floor
+    EXPECT_NEAR(e.pose.y, truth.y, 0.1);   // across the corridor the walls pin it down
+  }
+}
+
+TEST(PeakCovariance, OffMeansZero) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  CorrelationOptions o;
+  o.covariance_cells = 0;
+  SearchWindow w;
+  w.center = {2.5, 1.5, 0.3};
+  const Estimate e =
+      CorrelationEstimator(map, ring, o).estimate({simulate_sonar(map, ring, {2.4, 1.6, 0.3})}, w);
+  EXPECT_TRUE(e.covariance.isZero());
+  o.covariance_cells = -1;
+  test::expect_error([&] { CorrelationEstimator(map, ring, o); }, {"covariance_cells"});
+}
+
+}  // namespace
+}  // namespace gridloc
