@@ -18,6 +18,7 @@
 
 #include "gridloc/engine/evaluation/sector_protocol.hpp"
 #include "gridloc/engine/sectors/estimator.hpp"
+#include "gridloc/engine/sectors/localization.hpp"
 #include "gridloc/sensors/scan_disturbances.hpp"
 
 namespace gridloc::bench {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <optional>
 
-#include "gridloc/engine/sectors/visibility_sectors.hpp"
+#include "gridloc/engine/sectors/localization.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {

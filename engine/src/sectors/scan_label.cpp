@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "gridloc/engine/sectors/visibility_sectors.hpp"
+#include "gridloc/engine/sectors/scan_label.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {

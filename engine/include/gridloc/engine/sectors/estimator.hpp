@@ -6,6 +6,7 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/engine/estimator.hpp"
+#include "gridloc/engine/sectors/localization.hpp"
 #include "gridloc/engine/sectors/visibility_sectors.hpp"
 
 namespace gridloc {
