@@ -273,113 +273,137 @@ void check_full_turn(const RangeScan& scan) {
   }
 }
 
-}  // namespace
-
-SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
-                              const SectorLocalizationOptions& o) {
-  validate(scan);
-  check_full_turn(scan);
-  if (o.max_deleted_pairs < 0 || o.line_points < 2 || !(o.ambiguity_residual_m >= 0.0) ||
-      !(o.residual_cap_m > 0.0) || !(o.rough_residual_m > 0.0) || o.max_deleted_jumps < 0) {
+/// The options' ranges; throws gridloc::Error naming them.
+void check_options(const SectorLocalizationOptions& options) {
+  if (options.max_deleted_pairs < 0 || options.line_points < 2 ||
+      !(options.ambiguity_residual_m >= 0.0) || !(options.residual_cap_m > 0.0) ||
+      !(options.rough_residual_m > 0.0) || options.max_deleted_jumps < 0) {
     throw Error(
         "SectorLocalizationOptions: max_deleted_pairs and max_deleted_jumps must be >= 0, "
         "line_points >= 2, ambiguity_residual_m >= 0, residual_cap_m and rough_residual_m > 0");
   }
-  const ScanLabel l = construct_scan_label(scan, o.label);
-  SectorFix fix;
-  fix.scan_label = l.label;
+}
+
+/// The scan as the localization reads it: its label, every beam as a point (robot frame, a
+/// beam without return at the max range), the beams with a return and their points, and the
+/// widest beam step.
+struct ScanView {
+  const RangeScan& scan;
+  ScanLabel label;
+  std::vector<Eigen::Vector2d> points;   ///< per beam
+  std::vector<int> hits;                 ///< the beams with a return
+  std::vector<Eigen::Vector2d> returns;  ///< their points
+  double beam_step = 0.0;                ///< rad, at most 0.2
+};
+
+/// The scan's label, points, returns and beam step (see ScanView).
+ScanView view_scan(const RangeScan& scan, const ScanLabelOptions& label_options) {
+  ScanView view{scan, construct_scan_label(scan, label_options), {}, {}, {}, 0.0};
   const int n = static_cast<int>(scan.ranges.size());
-  std::vector<Eigen::Vector2d> pts(static_cast<std::size_t>(n));
+  view.points.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const double r = std::min(scan.ranges[i], scan.max_range);
-    pts[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
+    view.points[i] = r * Eigen::Vector2d(std::cos(scan.angles[i]), std::sin(scan.angles[i]));
   }
-  const std::vector<Wall> walls = walls_of(polygon_edges(sectors.map));
-  // How well the map explains the scan at a pose: each return's range against the range
-  // cast along its beam on the polygons, the difference capped, averaged. Beams without
-  // return do not count: real scanners drop beams on glass and dark surfaces.
-  std::vector<int> hits;
   for (int i = 0; i < n; ++i) {
-    if (scan.ranges[i] < scan.max_range) hits.push_back(i);
+    if (scan.ranges[i] < scan.max_range) view.hits.push_back(i);
   }
-  const auto range_residual = [&](const Pose2& pose, int stride) {
-    const Eigen::Vector2d origin(pose.x, pose.y);
-    double sum = 0.0;
-    int used = 0;
-    for (std::size_t h = 0; h < hits.size(); h += static_cast<std::size_t>(stride), ++used) {
-      const int i = hits[h];
-      const double a = pose.theta + scan.angles[i];
-      const Eigen::Vector2d dir(std::cos(a), std::sin(a));
-      double expected = scan.max_range;
-      for (const Wall& wall : walls) {
-        const Eigen::Vector2d &e = wall.e, w = wall.a - origin;
-        const double den = cross2(dir, e);
-        if (std::abs(den) < 1e-12) continue;  // parallel: not seen
-        const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
-        if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
-      }
-      sum += std::min(o.residual_cap_m, std::abs(scan.ranges[i] - expected));
-    }
-    return sum / used;
-  };
-  // Located vertices that a rigid motion cannot put near their map vertices are wrong
-  // correspondences (a corner fitted across two surfaces) or a wrong match: cheap to rule out
-  // before the residual. A D reading lies within a beam step of its corner, so the allowance
-  // grows with range.
+  for (int i = 0; i < n; ++i) {
+    if (scan.ranges[i] < scan.max_range) view.returns.push_back(view.points[i]);
+  }
   double beam_step = 2.0 * std::numbers::pi / n;
   for (int i = 1; i < n; ++i)
     beam_step = std::max(beam_step, std::abs(normalize_angle(scan.angles[i] - scan.angles[i - 1])));
-  beam_step = std::min(beam_step, 0.2);
-  const auto allowance = [&](const Eigen::Vector2d& local) {
-    return 0.3 + 1.5 * beam_step * local.norm();
-  };
-  // The rigid fit with correspondences it cannot place left out, worst first (`local` keeps
-  // the rest); nullopt when fewer than two remain.
-  const auto trimmed_fit = [&](std::vector<Eigen::Vector2d>& local,
-                               std::vector<Eigen::Vector2d> world) -> std::optional<Pose2> {
-    while (local.size() >= 2) {
-      const Pose2 pose = rigid_fit(local, world);
-      const Eigen::Rotation2Dd R(pose.theta);
-      const Eigen::Vector2d t(pose.x, pose.y);
-      std::size_t worst = 0;
-      double worst_excess = 0.0;
-      for (std::size_t k = 0; k < local.size(); ++k) {
-        const double excess = (R * local[k] + t - world[k]).norm() - allowance(local[k]);
-        if (excess > worst_excess) worst_excess = excess, worst = k;
-      }
-      if (worst_excess <= 0.0) return pose;
-      local.erase(local.begin() + static_cast<std::ptrdiff_t>(worst));
-      world.erase(world.begin() + static_cast<std::ptrdiff_t>(worst));
+  view.beam_step = std::min(beam_step, 0.2);
+  return view;
+}
+
+/// What every step reads: the sectors, the options, the scan and the map's walls.
+struct Problem {
+  const SectorMap& sectors;
+  const SectorLocalizationOptions& options;
+  ScanView view;
+  std::vector<Wall> walls;
+};
+
+/// How well the map explains the scan at a pose: each return's range (every `stride`-th)
+/// against the range cast along its beam on the polygons, the difference capped, averaged.
+/// Beams without return do not count: real scanners drop beams on glass and dark surfaces.
+double range_residual(const Problem& problem, const Pose2& pose, int stride) {
+  const RangeScan& scan = problem.view.scan;
+  const std::vector<int>& hits = problem.view.hits;
+  const Eigen::Vector2d origin(pose.x, pose.y);
+  double sum = 0.0;
+  int used = 0;
+  for (std::size_t h = 0; h < hits.size(); h += static_cast<std::size_t>(stride), ++used) {
+    const int i = hits[h];
+    const double a = pose.theta + scan.angles[i];
+    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    double expected = scan.max_range;
+    for (const Wall& wall : problem.walls) {
+      const Eigen::Vector2d &e = wall.e, w = wall.a - origin;
+      const double den = cross2(dir, e);
+      if (std::abs(den) < 1e-12) continue;  // parallel: not seen
+      const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
+      if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
     }
-    return std::nullopt;
-  };
-  // Sectors with alike labels give the same pose from the same vertices, many times over.
-  std::vector<std::pair<Pose2, double>> scored;
-  const auto residual_at = [&](const Pose2& pose) {
-    for (const auto& [p, r] : scored) {
+    sum += std::min(problem.options.residual_cap_m, std::abs(scan.ranges[i] - expected));
+  }
+  return sum / used;
+}
+
+/// Located vertices that a rigid motion cannot put near their map vertices are wrong
+/// correspondences (a corner fitted across two surfaces) or a wrong match: cheap to rule out
+/// before the residual. A D reading lies within a beam step of its corner, so the allowance
+/// (m) grows with range.
+double allowance(double beam_step, const Eigen::Vector2d& local) {
+  return 0.3 + 1.5 * beam_step * local.norm();
+}
+
+/// The rigid fit with correspondences it cannot place left out, worst first (`local` keeps
+/// the rest); nullopt when fewer than two remain.
+std::optional<Pose2> trimmed_fit(std::vector<Eigen::Vector2d>& local,
+                                 std::vector<Eigen::Vector2d> world, double beam_step) {
+  while (local.size() >= 2) {
+    const Pose2 pose = rigid_fit(local, world);
+    const Eigen::Rotation2Dd R(pose.theta);
+    const Eigen::Vector2d t(pose.x, pose.y);
+    std::size_t worst = 0;
+    double worst_excess = 0.0;
+    for (std::size_t k = 0; k < local.size(); ++k) {
+      const double excess = (R * local[k] + t - world[k]).norm() - allowance(beam_step, local[k]);
+      if (excess > worst_excess) worst_excess = excess, worst = k;
+    }
+    if (worst_excess <= 0.0) return pose;
+    local.erase(local.begin() + static_cast<std::ptrdiff_t>(worst));
+    world.erase(world.begin() + static_cast<std::ptrdiff_t>(worst));
+  }
+  return std::nullopt;
+}
+
+/// The two caches of a localization: sectors with alike labels give the same pose from the
+/// same vertices many times over (residuals, poses within 1e-9), and many sectors give the
+/// same correspondences, hence the same rough pose (polishes, exact poses).
+struct PoseMemo {
+  std::vector<std::pair<Pose2, double>> residuals;  ///< pose, range_residual(pose, 1)
+  std::vector<std::pair<Pose2, Pose2>> polishes;    ///< rough pose, polished pose
+
+  /// range_residual() of every return at `pose`, remembered.
+  double residual_at(const Problem& problem, const Pose2& pose) {
+    for (const auto& [p, r] : residuals) {
       if (std::abs(p.x - pose.x) < 1e-9 && std::abs(p.y - pose.y) < 1e-9 &&
           std::abs(p.theta - pose.theta) < 1e-9) {
         return r;
       }
     }
-    scored.emplace_back(pose, range_residual(pose, 1));
-    return scored.back().second;
-  };
-  struct Candidate {
-    int sector;
-    Pose2 pose;
-    int deleted, matched;
-    double residual;
-    std::vector<Eigen::Vector2d> located;  ///< the vertices the pose was fitted to (robot frame)
-  };
-  std::vector<Eigen::Vector2d> returns;
-  for (int i = 0; i < n; ++i) {
-    if (scan.ranges[i] < scan.max_range) returns.push_back(pts[i]);
+    residuals.emplace_back(pose, range_residual(problem, pose, 1));
+    return residuals.back().second;
   }
-  // Many sectors give the same correspondences, hence the same rough pose.
-  std::vector<std::pair<Pose2, Pose2>> polish_cache;
-  const auto polished = [&](const Pose2& rough, bool gated) {
-    for (const auto& [r, p] : polish_cache) {
+
+  /// `rough` polished on the walls, remembered; with `gated`, left rough when the scan
+  /// refutes it.
+  Pose2 polished(const Problem& problem, const Pose2& rough, bool gated) {
+    for (const auto& [r, p] : polishes) {
       if (r.x == rough.x && r.y == rough.y && r.theta == rough.theta) return p;
     }
     // A rough pose from located corners that the scan plainly refutes (a quarter of the
@@ -387,225 +411,321 @@ SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
     // and the polish most of the cost. Right matches are a few centimetres off before the
     // polish, far below the bar. Look-alike placements rest on two corners only and can be
     // tens of centimetres off: they are always polished.
-    const bool refuted = gated && range_residual(rough, 4) > o.rough_residual_m;
-    const Pose2 p = refuted ? rough : polish(returns, walls, rough);
-    polish_cache.emplace_back(rough, p);
-    return polish_cache.back().second;
-  };
-  std::vector<Candidate> found;
+    const bool refuted =
+        gated && range_residual(problem, rough, 4) > problem.options.rough_residual_m;
+    const Pose2 p = refuted ? rough : polish(problem.view.returns, problem.walls, rough);
+    polishes.emplace_back(rough, p);
+    return polishes.back().second;
+  }
+};
+
+/// A match (sector and turn) that gave a pose.
+struct Candidate {
+  int sector;
+  Pose2 pose;
+  int deleted, matched;
+  double residual;
+  std::vector<Eigen::Vector2d> located;  ///< the vertices the pose was fitted to (robot frame)
+};
+
+/// How often `c` occurs in `label`.
+std::ptrdiff_t count_of(const std::string& label, char c) {
+  return std::count(label.begin(), label.end(), c);
+}
+
+/// The candidates of the scan's label variant `scan_variant` turned onto the sector's
+/// `sector_variant`: one per turn that matches and whose pose lies in the free space.
+void add_label_turns(const Problem& problem, PoseMemo& memo, std::size_t s,
+                     const Variant& sector_variant, const Variant& scan_variant, int deleted,
+                     std::vector<Candidate>& found) {
+  const Sector& sector = problem.sectors.sectors[s];
+  const ScanLabel& scan_label = problem.view.label;
+  const int len = static_cast<int>(scan_variant.label.size());
+  // Every turn that matches: a periodic label (a rectangle's mMmMmMmM) matches several,
+  // and only the right one puts the vertices where the scan sees them.
+  for (int k = 0; k < len; ++k) {
+    bool equal = true;
+    for (int j = 0; j < len && equal; ++j)
+      equal = scan_variant.label[j] == sector_variant.label[(j + k) % len];
+    if (!equal) continue;
+    std::vector<Eigen::Vector2d> local, world;
+    for (int j = 0; j < len; ++j) {
+      if (scan_variant.label[j] != 'M') continue;
+      const int feature = sector.features[sector_variant.index[(j + k) % len]];
+      if (feature < 0) continue;
+      local.push_back(locate_vertex(problem.view.points, scan_label.beam[scan_variant.index[j]],
+                                    problem.options.line_points));
+      world.push_back(problem.sectors.vertices[feature]);
+    }
+    if (local.size() < 2) continue;
+    const std::optional<Pose2> fitted = trimmed_fit(local, world, problem.view.beam_step);
+    if (!fitted) continue;
+    const Pose2 pose = *fitted;
+    if (problem.sectors.sector_at({pose.x, pose.y}) < 0) continue;  // off the free space
+    found.push_back({static_cast<int>(s), pose, deleted, static_cast<int>(local.size()),
+                     memo.residual_at(problem, pose), local});
+  }
+}
+
+/// Seed 000's label match: every sector whose label equals the scan's turned, up to
+/// max_deleted_pairs M m pairs left out, gives candidates.
+void match_labels(const Problem& problem, PoseMemo& memo, std::vector<Candidate>& found) {
+  const SectorLocalizationOptions& options = problem.options;
+  const std::string& scan_label = problem.view.label.label;
   // Deletions on either side: the scan may miss a shallow pair the sector's label has, or
   // resolve one its label lacks (extrema move with the position inside a sector).
   // A scan misses more than it invents: most deletions go to the sector's side.
-  const int scan_side = std::min(1, o.max_deleted_pairs);
-  const int sector_side = o.max_deleted_pairs - scan_side;
-  const std::vector<Variant> scan_variants = variants(l.label, scan_side);
+  const int scan_side = std::min(1, options.max_deleted_pairs);
+  const int sector_side = options.max_deleted_pairs - scan_side;
+  const std::vector<Variant> scan_variants = variants(scan_label, scan_side);
   // Only M m pairs are ever deleted: a sector whose label has other D and c counts cannot
   // match, and is skipped before its variants are built.
-  const auto count = [](const std::string& x, char c) { return std::count(x.begin(), x.end(), c); };
-  for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
-    const Sector& sec = sectors.sectors[s];
-    if (count(sec.label, 'D') != count(l.label, 'D') ||
-        count(sec.label, 'c') != count(l.label, 'c')) {
+  for (std::size_t s = 0; s < problem.sectors.sectors.size(); ++s) {
+    const Sector& sector = problem.sectors.sectors[s];
+    if (count_of(sector.label, 'D') != count_of(scan_label, 'D') ||
+        count_of(sector.label, 'c') != count_of(scan_label, 'c')) {
       continue;
     }
-    for (const Variant& sv : variants(sec.label, sector_side)) {
-      for (const Variant& qv : scan_variants) {
-        const int len = static_cast<int>(qv.label.size());
-        if (static_cast<int>(sv.label.size()) != len || len == 0) continue;
-        const int deleted = (static_cast<int>(sec.label.size()) - len) / 2 +
-                            (static_cast<int>(l.label.size()) - len) / 2;
-        if (deleted > o.max_deleted_pairs) continue;
-        // Every turn that matches: a periodic label (a rectangle's mMmMmMmM) matches several,
-        // and only the right one puts the vertices where the scan sees them.
-        for (int k = 0; k < len; ++k) {
-          bool equal = true;
-          for (int j = 0; j < len && equal; ++j) equal = qv.label[j] == sv.label[(j + k) % len];
-          if (!equal) continue;
-          std::vector<Eigen::Vector2d> local, world;
-          for (int j = 0; j < len; ++j) {
-            if (qv.label[j] != 'M') continue;
-            const int feature = sec.features[sv.index[(j + k) % len]];
-            if (feature < 0) continue;
-            local.push_back(locate_vertex(pts, l.beam[qv.index[j]], o.line_points));
-            world.push_back(sectors.vertices[feature]);
-          }
-          if (local.size() < 2) continue;
-          const std::optional<Pose2> fitted = trimmed_fit(local, world);
-          if (!fitted) continue;
-          const Pose2 pose = *fitted;
-          if (sectors.sector_at({pose.x, pose.y}) < 0) continue;  // off the free space
-          found.push_back({static_cast<int>(s), pose, deleted, static_cast<int>(local.size()),
-                           residual_at(pose), local});
-        }
+    for (const Variant& sector_variant : variants(sector.label, sector_side)) {
+      for (const Variant& scan_variant : scan_variants) {
+        const int len = static_cast<int>(scan_variant.label.size());
+        if (static_cast<int>(sector_variant.label.size()) != len || len == 0) continue;
+        const int deleted = (static_cast<int>(sector.label.size()) - len) / 2 +
+                            (static_cast<int>(scan_label.size()) - len) / 2;
+        if (deleted > options.max_deleted_pairs) continue;
+        add_label_turns(problem, memo, s, sector_variant, scan_variant, deleted, found);
       }
     }
   }
-  // Partial views (seed 000's assumption (ii) failing: too few beams on a far, short or
-  // grazing edge) add or drop extrema between the jumps but keep the jumps. A sector whose D c
-  // skeleton is the scan's, turned, gives correspondences from its D vertices (the occluding
-  // corners, read at the near side of each jump: within a beam step) and from the M vertices
-  // of the runs between jumps that hold as many M as the scan's; polish() then fits the pose
-  // to every reading.
-  // A jump can also come or go: a wall seen at a grazing angle by coarse beams jumps by more
-  // than epsilon_T between neighbours, a narrow gap falls between two beams. Up to
-  // max_deleted_jumps neighbouring D c pairs of either skeleton are left out.
-  const std::vector<int> scan_skeleton = skeleton(l.label);
-  if (o.skeleton_matching && scan_skeleton.size() >= 2) {
-    const auto jump_variants = skeleton_variants(l.label, scan_skeleton, o.max_deleted_jumps);
-    // The correspondences of the scan's skeleton qa turned by k onto the sector's sa.
-    const auto try_match = [&](std::size_t s, const std::vector<int>& qa,
-                               const std::vector<int>& sa, int deleted) {
-      const Sector& sec = sectors.sectors[s];
-      const int ks = static_cast<int>(qa.size());
-      for (int k = 0; k < ks; ++k) {
-        bool equal = true;
-        for (int j = 0; j < ks && equal; ++j) equal = l.label[qa[j]] == sec.label[sa[(j + k) % ks]];
-        if (!equal) continue;
-        std::vector<Eigen::Vector2d> local, world;
-        for (int j = 0; j < ks; ++j) {
-          const int a = qa[j], b = sa[(j + k) % ks];
-          if (l.label[a] == 'D' && sec.features[b] >= 0) {
-            local.push_back(pts[l.beam[a]]);
-            world.push_back(sectors.vertices[sec.features[b]]);
-          }
-          const auto ms = maxima_between(l.label, a, qa[(j + 1) % ks]);
-          const auto mv = maxima_between(sec.label, b, sa[(j + k + 1) % ks]);
-          if (ms.size() != mv.size()) continue;
-          for (std::size_t q = 0; q < ms.size(); ++q) {
-            if (sec.features[mv[q]] < 0) continue;
-            local.push_back(locate_vertex(pts, l.beam[ms[q]], o.line_points));
-            world.push_back(sectors.vertices[sec.features[mv[q]]]);
-          }
-        }
-        if (local.size() < 2) continue;
-        const std::optional<Pose2> rough = trimmed_fit(local, world);
-        if (!rough) continue;
-        const Pose2 pose = polished(*rough, true);
-        if (sectors.sector_at({pose.x, pose.y}) < 0) continue;
-        // Behind every label match: ties go to the seed's own matching.
-        found.push_back({static_cast<int>(s), pose, o.max_deleted_pairs + 1 + deleted,
-                         static_cast<int>(local.size()), residual_at(pose), local});
+}
+
+/// The candidates of the scan's skeleton `scan_jumps` turned onto the sector's
+/// `sector_jumps`: the D vertices and the M vertices of runs with as many M on both sides,
+/// fitted, polished, one per turn that matches and lands in the free space.
+void add_skeleton_turns(const Problem& problem, PoseMemo& memo, std::size_t s,
+                        const std::vector<int>& scan_jumps, const std::vector<int>& sector_jumps,
+                        int deleted, std::vector<Candidate>& found) {
+  const Sector& sector = problem.sectors.sectors[s];
+  const ScanLabel& scan_label = problem.view.label;
+  const int ks = static_cast<int>(scan_jumps.size());
+  for (int k = 0; k < ks; ++k) {
+    bool equal = true;
+    for (int j = 0; j < ks && equal; ++j)
+      equal = scan_label.label[scan_jumps[j]] == sector.label[sector_jumps[(j + k) % ks]];
+    if (!equal) continue;
+    std::vector<Eigen::Vector2d> local, world;
+    for (int j = 0; j < ks; ++j) {
+      const int a = scan_jumps[j], b = sector_jumps[(j + k) % ks];
+      if (scan_label.label[a] == 'D' && sector.features[b] >= 0) {
+        local.push_back(problem.view.points[scan_label.beam[a]]);
+        world.push_back(problem.sectors.vertices[sector.features[b]]);
       }
-    };
-    for (std::size_t s = 0; s < sectors.sectors.size(); ++s) {
-      const std::string& label = sectors.sectors[s].label;
-      const std::vector<int> sk = skeleton(label);
-      const std::size_t ks = scan_skeleton.size();
-      if (sk.size() == ks) try_match(s, scan_skeleton, sk, 0);
-      // One side's pairs left out, never both (that would match too much).
-      if (sk.size() < ks) {
-        for (const auto& qa : jump_variants) {
-          if (qa.size() == sk.size()) try_match(s, qa, sk, static_cast<int>(ks - qa.size()) / 2);
-        }
-      } else if (sk.size() > ks) {
-        for (const auto& sa : skeleton_variants(label, sk, o.max_deleted_jumps)) {
-          if (sa.size() == ks)
-            try_match(s, scan_skeleton, sa, static_cast<int>(sk.size() - ks) / 2);
-        }
+      const auto scan_maxima = maxima_between(scan_label.label, a, scan_jumps[(j + 1) % ks]);
+      const auto sector_maxima = maxima_between(sector.label, b, sector_jumps[(j + k + 1) % ks]);
+      if (scan_maxima.size() != sector_maxima.size()) continue;
+      for (std::size_t q = 0; q < scan_maxima.size(); ++q) {
+        if (sector.features[sector_maxima[q]] < 0) continue;
+        local.push_back(locate_vertex(problem.view.points, scan_label.beam[scan_maxima[q]],
+                                      problem.options.line_points));
+        world.push_back(problem.sectors.vertices[sector.features[sector_maxima[q]]]);
+      }
+    }
+    if (local.size() < 2) continue;
+    const std::optional<Pose2> rough = trimmed_fit(local, world, problem.view.beam_step);
+    if (!rough) continue;
+    const Pose2 pose = memo.polished(problem, *rough, true);
+    if (problem.sectors.sector_at({pose.x, pose.y}) < 0) continue;
+    // Behind every label match: ties go to the seed's own matching.
+    found.push_back({static_cast<int>(s), pose, problem.options.max_deleted_pairs + 1 + deleted,
+                     static_cast<int>(local.size()), memo.residual_at(problem, pose), local});
+  }
+}
+
+/// Partial views (seed 000's assumption (ii) failing: too few beams on a far, short or
+/// grazing edge) add or drop extrema between the jumps but keep the jumps. A sector whose D c
+/// skeleton is the scan's, turned, gives correspondences from its D vertices (the occluding
+/// corners, read at the near side of each jump: within a beam step) and from the M vertices
+/// of the runs between jumps that hold as many M as the scan's; polish() then fits the pose
+/// to every reading.
+/// A jump can also come or go: a wall seen at a grazing angle by coarse beams jumps by more
+/// than epsilon_T between neighbours, a narrow gap falls between two beams. Up to
+/// max_deleted_jumps neighbouring D c pairs of either skeleton are left out.
+void match_skeletons(const Problem& problem, PoseMemo& memo, std::vector<Candidate>& found) {
+  const SectorLocalizationOptions& options = problem.options;
+  const std::string& scan_label = problem.view.label.label;
+  const std::vector<int> scan_skeleton = skeleton(scan_label);
+  if (!options.skeleton_matching || scan_skeleton.size() < 2) return;
+  const auto jump_variants =
+      skeleton_variants(scan_label, scan_skeleton, options.max_deleted_jumps);
+  for (std::size_t s = 0; s < problem.sectors.sectors.size(); ++s) {
+    const std::string& label = problem.sectors.sectors[s].label;
+    const std::vector<int> sk = skeleton(label);
+    const std::size_t ks = scan_skeleton.size();
+    if (sk.size() == ks) add_skeleton_turns(problem, memo, s, scan_skeleton, sk, 0, found);
+    // One side's pairs left out, never both (that would match too much).
+    if (sk.size() < ks) {
+      for (const auto& qa : jump_variants) {
+        if (qa.size() == sk.size())
+          add_skeleton_turns(problem, memo, s, qa, sk, static_cast<int>(ks - qa.size()) / 2, found);
+      }
+    } else if (sk.size() > ks) {
+      for (const auto& sa : skeleton_variants(label, sk, options.max_deleted_jumps)) {
+        if (sa.size() == ks)
+          add_skeleton_turns(problem, memo, s, scan_skeleton, sa,
+                             static_cast<int>(sk.size() - ks) / 2, found);
       }
     }
   }
-  if (found.empty()) return fix;
-  // Sectors whose labels match alike often give the same pose from the same vertices: among
-  // equal residuals, the candidate whose pose lies in the sector it matched names the sector.
-  const auto home = [&](const Candidate& c) {
-    return sectors.sector_at({c.pose.x, c.pose.y}) == c.sector ? 0 : 1;
-  };
-  const auto select = [&] {
-    return std::min_element(found.begin(), found.end(),
-                            [&](const Candidate& a, const Candidate& b) {
-                              if (a.residual != b.residual) return a.residual < b.residual;
-                              if (home(a) != home(b)) return home(a) < home(b);
-                              return a.deleted < b.deleted;
-                            });
-  };
-  // Look-alikes (seed 000 §4.1): the label names vertices by the sector they were read in, and
-  // a look-alike place whose sector's label came out otherwise (labels vary inside a sector)
-  // would never be tried. So the winner's two farthest located vertices are also put on every
-  // other pair of map vertices as far apart; a placement that lands the other located vertices
-  // on map vertices too is polished and scored like any candidate.
-  if (o.lookalike_search) {
-    const Candidate winner = *select();
-    const auto& v = sectors.vertices;
-    const auto near_vertex = [&](const Pose2& at, const Eigen::Vector2d& p) {
-      const Eigen::Vector2d w = Eigen::Rotation2Dd(at.theta) * p + Eigen::Vector2d(at.x, at.y);
-      return std::any_of(v.begin(), v.end(),
-                         [&](const Eigen::Vector2d& u) { return (u - w).norm() <= allowance(p); });
-    };
-    // Only the located corners that land on a map vertex at the winner's own pose: the
-    // polish may have moved it from where its rough fit put a wall point.
-    std::vector<Eigen::Vector2d> q;
-    for (const auto& p : winner.located) {
-      if (near_vertex(winner.pose, p)) q.push_back(p);
-    }
-    if (q.size() < 2) q.clear();
-    std::size_t a = 0, b = 1;
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      for (std::size_t j = i + 1; j < q.size(); ++j) {
-        if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
-      }
-    }
-    const double d = q.empty() ? 0.0 : (q[a] - q[b]).norm();
-    const double tolerance =
-        q.empty() ? 0.0 : 2.0 * std::max(allowance(q[a]), allowance(q[b])) - 0.3;
-    for (std::size_t i = 0; i < v.size() && d > 0.3; ++i) {
-      for (std::size_t j = 0; j < v.size(); ++j) {
-        if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
-        const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
-        const bool lands = std::all_of(
-            q.begin(), q.end(), [&](const Eigen::Vector2d& p) { return near_vertex(rough, p); });
-        if (!lands) continue;
-        const Pose2 pose = polished(rough, false);
-        const int sector = sectors.sector_at({pose.x, pose.y});
-        if (sector < 0) continue;
-        found.push_back({sector, pose, winner.deleted + 1, winner.matched, residual_at(pose), q});
-      }
+}
+
+/// 0 when the candidate's pose lies in the sector it matched, else 1.
+int home(const SectorMap& sectors, const Candidate& candidate) {
+  return sectors.sector_at({candidate.pose.x, candidate.pose.y}) == candidate.sector ? 0 : 1;
+}
+
+/// The best candidate: the smallest residual; sectors whose labels match alike often give
+/// the same pose from the same vertices: among equal residuals, the candidate whose pose lies
+/// in the sector it matched names the sector, then the fewest deletions.
+std::vector<Candidate>::const_iterator best_candidate(const SectorMap& sectors,
+                                                      const std::vector<Candidate>& found) {
+  return std::min_element(found.begin(), found.end(), [&](const Candidate& a, const Candidate& b) {
+    if (a.residual != b.residual) return a.residual < b.residual;
+    if (home(sectors, a) != home(sectors, b)) return home(sectors, a) < home(sectors, b);
+    return a.deleted < b.deleted;
+  });
+}
+
+/// Whether `p` (robot frame) lies, at pose `at`, within its allowance of a map vertex.
+bool near_vertex(const Problem& problem, const Pose2& at, const Eigen::Vector2d& p) {
+  const auto& vertices = problem.sectors.vertices;
+  const Eigen::Vector2d w = Eigen::Rotation2Dd(at.theta) * p + Eigen::Vector2d(at.x, at.y);
+  return std::any_of(vertices.begin(), vertices.end(), [&](const Eigen::Vector2d& u) {
+    return (u - w).norm() <= allowance(problem.view.beam_step, p);
+  });
+}
+
+/// Look-alikes (seed 000 §4.1): the label names vertices by the sector they were read in, and
+/// a look-alike place whose sector's label came out otherwise (labels vary inside a sector)
+/// would never be tried. So the winner's two farthest located vertices are also put on every
+/// other pair of map vertices as far apart; a placement that lands the other located vertices
+/// on map vertices too is polished and scored like any candidate.
+void add_lookalikes(const Problem& problem, PoseMemo& memo, std::vector<Candidate>& found) {
+  if (!problem.options.lookalike_search || found.empty()) return;
+  const Candidate winner = *best_candidate(problem.sectors, found);
+  const auto& v = problem.sectors.vertices;
+  // Only the located corners that land on a map vertex at the winner's own pose: the
+  // polish may have moved it from where its rough fit put a wall point.
+  std::vector<Eigen::Vector2d> q;
+  for (const auto& p : winner.located) {
+    if (near_vertex(problem, winner.pose, p)) q.push_back(p);
+  }
+  if (q.size() < 2) return;
+  std::size_t a = 0, b = 1;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    for (std::size_t j = i + 1; j < q.size(); ++j) {
+      if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
     }
   }
-  fix.candidates = static_cast<int>(found.size());
-  const auto best = select();
-  fix.found = true;
-  fix.sector = best->sector;
-  // The sector named is one whose label matched with (nearly) this pose and that holds it,
-  // when there is one: a neighbour's alike label may explain the scan a hair better.
-  if (home(*best) != 0) {
-    for (const auto& c : found) {
-      if (home(c) == 0 && std::hypot(c.pose.x - best->pose.x, c.pose.y - best->pose.y) < 0.02 &&
-          std::abs(normalize_angle(c.pose.theta - best->pose.theta)) < 0.01) {
-        fix.sector = c.sector;
-        break;
-      }
+  const double d = (q[a] - q[b]).norm();
+  const double beam_step = problem.view.beam_step;
+  const double tolerance =
+      2.0 * std::max(allowance(beam_step, q[a]), allowance(beam_step, q[b])) - 0.3;
+  if (!(d > 0.3)) return;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = 0; j < v.size(); ++j) {
+      if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
+      const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
+      const bool lands = std::all_of(q.begin(), q.end(), [&](const Eigen::Vector2d& p) {
+        return near_vertex(problem, rough, p);
+      });
+      if (!lands) continue;
+      const Pose2 pose = memo.polished(problem, rough, false);
+      const int sector = problem.sectors.sector_at({pose.x, pose.y});
+      if (sector < 0) continue;
+      found.push_back(
+          {sector, pose, winner.deleted + 1, winner.matched, memo.residual_at(problem, pose), q});
     }
   }
-  fix.pose = best->pose;
-  fix.deleted_pairs = best->deleted;
-  fix.matched_m = best->matched;
-  fix.residual_m = best->residual;
-  // A distinct pose that explains the scan about as well: in another sector with the same
-  // label (seed 000 §4.1), or in the same sector of a symmetric room (a rectangle's twin pose
-  // turned by 180 deg).
-  // The alternatives are those poses, best first, each distinct from all before it.
+}
+
+/// The sector the fix names: one whose label matched with (nearly) the best pose and that
+/// holds it, when there is one (a neighbour's alike label may explain the scan a hair
+/// better), else the best candidate's.
+int named_sector(const SectorMap& sectors, const std::vector<Candidate>& found,
+                 const Candidate& best) {
+  if (home(sectors, best) == 0) return best.sector;
+  for (const auto& c : found) {
+    if (home(sectors, c) == 0 &&
+        std::hypot(c.pose.x - best.pose.x, c.pose.y - best.pose.y) < 0.02 &&
+        std::abs(normalize_angle(c.pose.theta - best.pose.theta)) < 0.01) {
+      return c.sector;
+    }
+  }
+  return best.sector;
+}
+
+/// A distinct pose that explains the scan about as well: in another sector with the same
+/// label (seed 000 §4.1), or in the same sector of a symmetric room (a rectangle's twin pose
+/// turned by 180 deg). The alternatives are the best and those poses, best first, each
+/// distinct from all before it.
+std::vector<SectorFix::Alternative> alternatives(const std::vector<Candidate>& found,
+                                                 const Candidate& best, double within) {
   const auto distinct = [](const Pose2& p, const Pose2& q) {
     return std::hypot(p.x - q.x, p.y - q.y) > 0.3 ||
            std::abs(normalize_angle(p.theta - q.theta)) > 0.26;
   };
   std::vector<const Candidate*> close;
   for (const auto& c : found) {
-    if (c.residual <= best->residual + o.ambiguity_residual_m) close.push_back(&c);
+    if (c.residual <= best.residual + within) close.push_back(&c);
   }
   std::stable_sort(close.begin(), close.end(), [](const Candidate* a, const Candidate* b) {
     return a->residual < b->residual;
   });
-  fix.alternatives.push_back({best->pose, best->residual});
+  std::vector<SectorFix::Alternative> out{{best.pose, best.residual}};
   for (const Candidate* c : close) {
-    if (std::all_of(fix.alternatives.begin(), fix.alternatives.end(),
+    if (std::all_of(out.begin(), out.end(),
                     [&](const SectorFix::Alternative& x) { return distinct(x.pose, c->pose); })) {
-      fix.alternatives.push_back({c->pose, c->residual});
+      out.push_back({c->pose, c->residual});
     }
   }
+  return out;
+}
+
+/// The fix of the candidates: the best one's pose, sector and residual, the look-alikes and
+/// the covariance; not found without candidates.
+SectorFix make_fix(const Problem& problem, const std::vector<Candidate>& found) {
+  SectorFix fix;
+  fix.scan_label = problem.view.label.label;
+  if (found.empty()) return fix;
+  fix.candidates = static_cast<int>(found.size());
+  const Candidate& best = *best_candidate(problem.sectors, found);
+  fix.found = true;
+  fix.sector = named_sector(problem.sectors, found, best);
+  fix.pose = best.pose;
+  fix.deleted_pairs = best.deleted;
+  fix.matched_m = best.matched;
+  fix.residual_m = best.residual;
+  fix.alternatives = alternatives(found, best, problem.options.ambiguity_residual_m);
   fix.ambiguous = fix.alternatives.size() > 1;
-  fix.covariance = pose_covariance(returns, walls, fix.pose);
+  fix.covariance = pose_covariance(problem.view.returns, problem.walls, fix.pose);
   return fix;
+}
+
+}  // namespace
+
+SectorFix localize_in_sectors(const SectorMap& sectors, const RangeScan& scan,
+                              const SectorLocalizationOptions& options) {
+  validate(scan);
+  check_full_turn(scan);
+  check_options(options);
+  const Problem problem{sectors, options, view_scan(scan, options.label),
+                        walls_of(polygon_edges(sectors.map))};
+  PoseMemo memo;
+  std::vector<Candidate> found;
+  match_labels(problem, memo, found);
+  match_skeletons(problem, memo, found);
+  add_lookalikes(problem, memo, found);
+  return make_fix(problem, found);
 }
 
 }  // namespace gridloc
