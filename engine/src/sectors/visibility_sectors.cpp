@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <limits>
 #include <map>
@@ -74,6 +75,332 @@ bool in_free_space(const PolygonMap& map, const Eigen::Vector2d& p) {
                       [&](const Polygon& o) { return inside(o, p); });
 }
 
+/// The 4-neighbourhood's steps: east, west, north, south.
+constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+
+/// The options' ranges; throws gridloc::Error naming the bad one.
+void check_options(const SectorOptions& options) {
+  if (!(options.cell_m > 0.0) || !std::isfinite(options.cell_m)) {
+    throw Error("SectorOptions.cell_m must be positive, got " + std::to_string(options.cell_m));
+  }
+  if (!(options.clearance_m >= 0.0) || !std::isfinite(options.clearance_m)) {
+    throw Error("SectorOptions.clearance_m must be >= 0, got " +
+                std::to_string(options.clearance_m));
+  }
+  if (options.label_beams < 36) {
+    throw Error("SectorOptions.label_beams must be >= 36, got " +
+                std::to_string(options.label_beams));
+  }
+}
+
+/// The boundary's bounding box: its lower and upper corners.
+struct Box {
+  Eigen::Vector2d lo, hi;
+};
+
+Box bounding_box(const Polygon& boundary) {
+  Box box{boundary.front(), boundary.front()};
+  for (const auto& p : boundary) box.lo = box.lo.cwiseMin(p), box.hi = box.hi.cwiseMax(p);
+  return box;
+}
+
+/// The sampling grid over the bounding box, cells of `cell_m`; throws gridloc::Error when it
+/// has too many cells.
+GridGeometry sampling_grid(const Box& box, double cell_m) {
+  GridGeometry grid;
+  grid.resolution = cell_m;
+  grid.origin = box.lo;
+  grid.width = static_cast<int>(std::ceil((box.hi.x() - box.lo.x()) / cell_m));
+  grid.height = static_cast<int>(std::ceil((box.hi.y() - box.lo.y()) / cell_m));
+  if (static_cast<double>(grid.width) * grid.height > 2e7) {
+    throw Error(
+        "compute_sectors: " + std::to_string(grid.width) + " x " + std::to_string(grid.height) +
+        " cells; use a larger sampling cell (SectorOptions::cell_m, gridloc sectors --cell)");
+  }
+  return grid;
+}
+
+/// A grid cell's centre (world, m).
+Eigen::Vector2d centre_of(const GridGeometry& grid, std::size_t cell) {
+  const int ix = static_cast<int>(cell % grid.width), iy = static_cast<int>(cell / grid.width);
+  return grid.origin + grid.cell_center(ix, iy);
+}
+
+/// Per grid cell: whether its centre lies in the free space, and the vertices visible from
+/// there (one bit per vertex, `words` 64-bit words per cell).
+struct Visibility {
+  int words = 0;
+  std::vector<char> free;
+  std::vector<std::uint64_t> bits;
+
+  /// Vertex k is visible from the cell's centre.
+  bool sees(std::size_t cell, int k) const { return bits[cell * words + k / 64] >> (k % 64) & 1; }
+  /// The two cells see the same vertices.
+  bool same(std::size_t a, std::size_t b) const {
+    return std::equal(bits.begin() + static_cast<std::ptrdiff_t>(a * words),
+                      bits.begin() + static_cast<std::ptrdiff_t>((a + 1) * words),
+                      bits.begin() + static_cast<std::ptrdiff_t>(b * words));
+  }
+};
+
+/// The free cells and their visible-vertex sets (exact segment tests per cell centre).
+Visibility visible_vertices(const PolygonMap& map, const Geometry& geo, const GridGeometry& grid) {
+  const int nv = static_cast<int>(geo.v.size());
+  Visibility out;
+  out.words = (nv + 63) / 64;
+  const std::size_t cells = grid.size();
+  out.free.assign(cells, 0);
+  out.bits.assign(cells * static_cast<std::size_t>(out.words), 0);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int iy = 0; iy < grid.height; ++iy) {
+    for (int ix = 0; ix < grid.width; ++ix) {
+      const Eigen::Vector2d p = grid.origin + grid.cell_center(ix, iy);
+      if (!in_free_space(map, p)) continue;
+      const std::size_t c = grid.index(ix, iy);
+      out.free[c] = 1;
+      for (int k = 0; k < nv; ++k) {
+        if (geo.visible(p, k)) out.bits[c * out.words + k / 64] |= std::uint64_t{1} << (k % 64);
+      }
+    }
+  }
+  return out;
+}
+
+/// Faces: the 4-connected regions of free cells with one visible set.
+struct Faces {
+  std::vector<int> face;                          ///< per cell: its face, or -1
+  std::vector<std::vector<std::size_t>> members;  ///< per face: its cells, in search order
+};
+
+/// The faces, found by breadth-first search from each unassigned free cell in index order.
+Faces connected_faces(const GridGeometry& grid, const Visibility& visibility) {
+  const std::size_t cells = grid.size();
+  Faces out;
+  out.face.assign(cells, -1);
+  std::vector<int>& face = out.face;
+  for (std::size_t s = 0; s < cells; ++s) {
+    if (!visibility.free[s] || face[s] >= 0) continue;
+    const int id = static_cast<int>(out.members.size());
+    out.members.emplace_back();
+    std::deque<std::size_t> queue{s};
+    face[s] = id;
+    while (!queue.empty()) {
+      const std::size_t c = queue.front();
+      queue.pop_front();
+      out.members[id].push_back(c);
+      const int cx = static_cast<int>(c % grid.width), cy = static_cast<int>(c / grid.width);
+      for (int d = 0; d < 4; ++d) {
+        const int nx = cx + kDx[d], ny = cy + kDy[d];
+        if (!grid.contains(nx, ny)) continue;
+        const std::size_t nc = grid.index(nx, ny);
+        if (visibility.free[nc] && face[nc] < 0 && visibility.same(c, nc)) {
+          face[nc] = id, queue.push_back(nc);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+/// A face's most interior cell (farthest, in 4-steps, from a cell of another face; the first
+/// of the deepest in search order).
+std::size_t most_interior_cell(const GridGeometry& grid, const Faces& faces, int id) {
+  const std::vector<std::size_t>& members = faces.members[id];
+  std::vector<int> depth(members.size(), -1);
+  std::map<std::size_t, std::size_t> pos;
+  for (std::size_t k = 0; k < members.size(); ++k) pos[members[k]] = k;
+  std::deque<std::size_t> queue;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const std::size_t c = members[k];
+    const int cx = static_cast<int>(c % grid.width), cy = static_cast<int>(c / grid.width);
+    for (int d = 0; d < 4; ++d) {
+      const int nx = cx + kDx[d], ny = cy + kDy[d];
+      if (!grid.contains(nx, ny) || faces.face[grid.index(nx, ny)] != id) {
+        depth[k] = 0;
+        queue.push_back(k);
+        break;
+      }
+    }
+  }
+  while (!queue.empty()) {
+    const std::size_t k = queue.front();
+    queue.pop_front();
+    const std::size_t c = members[k];
+    const int cx = static_cast<int>(c % grid.width), cy = static_cast<int>(c / grid.width);
+    for (int d = 0; d < 4; ++d) {
+      const int nx = cx + kDx[d], ny = cy + kDy[d];
+      if (!grid.contains(nx, ny)) continue;
+      const auto it = pos.find(grid.index(nx, ny));
+      if (it != pos.end() && depth[it->second] < 0) {
+        depth[it->second] = depth[k] + 1;
+        queue.push_back(it->second);
+      }
+    }
+  }
+  const std::size_t best =
+      static_cast<std::size_t>(std::max_element(depth.begin(), depth.end()) - depth.begin());
+  return members[best];
+}
+
+/// Per character of a label read by `scan` from `origin`: the visible vertex nearest the
+/// reading of an M or D (within four beam steps and at least 5 cm), else -1.
+std::vector<int> label_features(const Geometry& geo, const std::vector<int>& visible,
+                                const Eigen::Vector2d& origin, const RangeScan& scan,
+                                const ScanLabel& label, int label_beams) {
+  std::vector<int> features;
+  for (std::size_t k = 0; k < label.label.size(); ++k) {
+    int feature = -1;
+    if (label.label[k] == 'M' || label.label[k] == 'D') {
+      const int b = label.beam[k];
+      const double r = scan.ranges[b];
+      const Eigen::Vector2d hit =
+          origin + r * Eigen::Vector2d(std::cos(scan.angles[b]), std::sin(scan.angles[b]));
+      double best = std::max(0.05, 4.0 * r * 2.0 * std::numbers::pi / label_beams);
+      for (int v : visible) {
+        const double d = (geo.v[v] - hit).norm();
+        if (d < best) best = d, feature = v;
+      }
+    }
+    features.push_back(feature);
+  }
+  return features;
+}
+
+/// One sector per face: its most interior cell, cells and visible set, and the label (with
+/// its features) of a dense noise-free scan from there, heading 0, of range `reach`.
+std::vector<Sector> face_sectors(const PolygonMap& map, const Geometry& geo,
+                                 const GridGeometry& grid, const Visibility& visibility,
+                                 const Faces& faces, double reach, const SectorOptions& options) {
+  ScanLabelOptions dense = options.label;
+  dense.median_window = 1;
+  const int nv = static_cast<int>(geo.v.size());
+  const int nf = static_cast<int>(faces.members.size());
+  std::vector<Sector> out(static_cast<std::size_t>(nf));
+  for (int id = 0; id < nf; ++id) {
+    Sector& s = out[id];
+    s.representative = centre_of(grid, most_interior_cell(grid, faces, id));
+    s.cells = static_cast<int>(faces.members[id].size());
+    const std::size_t c0 = faces.members[id].front();
+    for (int k = 0; k < nv; ++k) {
+      if (visibility.sees(c0, k)) s.visible.push_back(k);
+    }
+    const RangeScan scan = polygon_scan(map, {s.representative.x(), s.representative.y(), 0.0},
+                                        options.label_beams, reach);
+    const ScanLabel label = construct_scan_label(scan, dense);
+    s.label = label.label;
+    s.features = label_features(geo, s.visible, s.representative, scan, label, options.label_beams);
+  }
+  return out;
+}
+
+/// Union-find over faces, with path halving.
+struct FaceGroups {
+  std::vector<int> parent;
+  explicit FaceGroups(int n) : parent(static_cast<std::size_t>(n)) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int find(int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+};
+
+/// Seed 000's merge: adjacent faces with one label are one sector. The largest face of each
+/// merged group speaks for it (representative, visible set, features); the cells add up.
+/// Fills out.sectors (in order of each group's first face), out.sector_of and the areas.
+void merge_equal_labels(const GridGeometry& grid, const Faces& faces,
+                        const std::vector<Sector>& face_sector, double cell_m, SectorMap& out) {
+  const std::vector<int>& face = faces.face;
+  const std::size_t cells = grid.size();
+  const int nf = static_cast<int>(face_sector.size());
+  FaceGroups groups(nf);
+  for (std::size_t c = 0; c < cells; ++c) {
+    if (face[c] < 0) continue;
+    const int cx = static_cast<int>(c % grid.width), cy = static_cast<int>(c / grid.width);
+    for (int d = 0; d < 2; ++d) {  // east and north neighbours
+      const int nx = cx + (d == 0), ny = cy + (d == 1);
+      if (!grid.contains(nx, ny)) continue;
+      const int f = face[grid.index(nx, ny)];
+      if (f >= 0 && f != face[c] && face_sector[f].label == face_sector[face[c]].label) {
+        groups.parent[groups.find(f)] = groups.find(face[c]);
+      }
+    }
+  }
+  std::vector<int> largest(static_cast<std::size_t>(nf), -1),
+      total(static_cast<std::size_t>(nf), 0);
+  for (int id = 0; id < nf; ++id) {
+    const int root = groups.find(id);
+    if (largest[root] < 0 || face_sector[id].cells > face_sector[largest[root]].cells) {
+      largest[root] = id;
+    }
+    total[root] += face_sector[id].cells;
+  }
+  std::vector<int> sector_of_face(static_cast<std::size_t>(nf), -1);
+  for (int id = 0; id < nf; ++id) {
+    const int root = groups.find(id);
+    if (sector_of_face[root] < 0) {
+      sector_of_face[root] = static_cast<int>(out.sectors.size());
+      out.sectors.push_back(face_sector[largest[root]]);
+      out.sectors.back().cells = total[root];
+    }
+    sector_of_face[id] = sector_of_face[root];
+  }
+  out.sector_of.assign(cells, -1);
+  for (std::size_t c = 0; c < cells; ++c) {
+    if (face[c] >= 0) out.sector_of[c] = sector_of_face[face[c]];
+  }
+  for (auto& s : out.sectors) s.area_m2 = s.cells * cell_m * cell_m;
+}
+
+/// Seed 000 §4.1: labels one turn away from another sector's are ambiguous.
+void mark_turned_twins(std::vector<Sector>& sectors) {
+  for (std::size_t a = 0; a < sectors.size(); ++a) {
+    for (std::size_t b = a + 1; b < sectors.size(); ++b) {
+      if (cyclic_equal(sectors[a].label, sectors[b].label)) {
+        sectors[a].ambiguous = sectors[b].ambiguous = true;
+      }
+    }
+  }
+}
+
+/// The distance from `p` to the nearest edge (m).
+double wall_distance(const Geometry& geo, const Eigen::Vector2d& p) {
+  double wall = std::numeric_limits<double>::infinity();
+  for (const auto& [i, j] : geo.edges) {
+    const Eigen::Vector2d e = geo.v[j] - geo.v[i];
+    const double t = std::clamp((p - geo.v[i]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    wall = std::min(wall, (geo.v[i] + t * e - p).norm());
+  }
+  return wall;
+}
+
+/// Seed 000 eq. (10)-(11): alpha = the smallest angle a fully visible edge subtends over a
+/// sector's cells at least clearance_m from the walls; n_min = 6 pi / alpha, n_min_two =
+/// 4 pi / alpha.
+void set_minimum_readings(const Geometry& geo, const Visibility& visibility, double clearance_m,
+                          SectorMap& out) {
+  const GridGeometry& grid = out.grid;
+  std::vector<double> alpha(out.sectors.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t c = 0; c < grid.size(); ++c) {
+    const int s = out.sector_of[c];
+    if (s < 0) continue;
+    const Eigen::Vector2d p = centre_of(grid, c);
+    // Where the robot cannot stand (nearer a wall than the clearance) does not count: at a
+    // wall, the wall itself subtends no angle and N_min has no bound (seed 000 §4.2).
+    if (wall_distance(geo, p) < clearance_m) continue;
+    for (const auto& [i, j] : geo.edges) {
+      if (!visibility.sees(c, i) || !visibility.sees(c, j)) continue;
+      const Eigen::Vector2d a = geo.v[i] - p, b = geo.v[j] - p;
+      alpha[s] = std::min(alpha[s], std::abs(std::atan2(cross(a, b), a.dot(b))));
+    }
+  }
+  for (std::size_t s = 0; s < out.sectors.size(); ++s) {
+    if (!std::isfinite(alpha[s]) || alpha[s] <= 0.0) continue;
+    out.sectors[s].n_min = static_cast<int>(std::ceil(6.0 * std::numbers::pi / alpha[s]));
+    out.sectors[s].n_min_two = static_cast<int>(std::ceil(4.0 * std::numbers::pi / alpha[s]));
+  }
+}
+
 }  // namespace
 
 RangeScan polygon_scan(const PolygonMap& map, const Pose2& pose, int beams, double max_range) {
@@ -95,239 +422,22 @@ int SectorMap::n_min_two() const {
   return n;
 }
 
-SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& o) {
-  if (!(o.cell_m > 0.0) || !std::isfinite(o.cell_m)) {
-    throw Error("SectorOptions.cell_m must be positive, got " + std::to_string(o.cell_m));
-  }
-  if (!(o.clearance_m >= 0.0) || !std::isfinite(o.clearance_m)) {
-    throw Error("SectorOptions.clearance_m must be >= 0, got " + std::to_string(o.clearance_m));
-  }
-  if (o.label_beams < 36) {
-    throw Error("SectorOptions.label_beams must be >= 36, got " + std::to_string(o.label_beams));
-  }
+SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& options) {
+  check_options(options);
   SectorMap out;
   out.map = map;
   const Geometry geo(map);
   out.vertices = geo.v;
-  const int nv = static_cast<int>(geo.v.size());
-  const int words = (nv + 63) / 64;
-
-  Eigen::Vector2d lo = map.boundary.front(), hi = lo;
-  for (const auto& p : map.boundary) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  GridGeometry& g = out.grid;
-  g.resolution = o.cell_m;
-  g.origin = lo;
-  g.width = static_cast<int>(std::ceil((hi.x() - lo.x()) / o.cell_m));
-  g.height = static_cast<int>(std::ceil((hi.y() - lo.y()) / o.cell_m));
-  if (static_cast<double>(g.width) * g.height > 2e7) {
-    throw Error(
-        "compute_sectors: " + std::to_string(g.width) + " x " + std::to_string(g.height) +
-        " cells; use a larger sampling cell (SectorOptions::cell_m, gridloc sectors --cell)");
-  }
-  const std::size_t cells = g.size();
-  std::vector<char> free(cells, 0);
-  std::vector<std::uint64_t> bits(cells * static_cast<std::size_t>(words), 0);
-  const auto centre = [&](int ix, int iy) -> Eigen::Vector2d {
-    return g.origin + g.cell_center(ix, iy);
-  };
-#pragma omp parallel for schedule(dynamic, 4)
-  for (int iy = 0; iy < g.height; ++iy) {
-    for (int ix = 0; ix < g.width; ++ix) {
-      const Eigen::Vector2d p = centre(ix, iy);
-      if (!in_free_space(map, p)) continue;
-      const std::size_t c = g.index(ix, iy);
-      free[c] = 1;
-      for (int k = 0; k < nv; ++k) {
-        if (geo.visible(p, k)) bits[c * words + k / 64] |= std::uint64_t{1} << (k % 64);
-      }
-    }
-  }
-  const auto same = [&](std::size_t a, std::size_t b) {
-    return std::equal(bits.begin() + static_cast<std::ptrdiff_t>(a * words),
-                      bits.begin() + static_cast<std::ptrdiff_t>((a + 1) * words),
-                      bits.begin() + static_cast<std::ptrdiff_t>(b * words));
-  };
-
-  // Faces: 4-connected cells with one visible set.
-  std::vector<int> face(cells, -1);
-  std::vector<std::vector<std::size_t>> members;
-  const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
-  for (std::size_t s = 0; s < cells; ++s) {
-    if (!free[s] || face[s] >= 0) continue;
-    const int id = static_cast<int>(members.size());
-    members.emplace_back();
-    std::deque<std::size_t> q{s};
-    face[s] = id;
-    while (!q.empty()) {
-      const std::size_t c = q.front();
-      q.pop_front();
-      members[id].push_back(c);
-      const int cx = static_cast<int>(c % g.width), cy = static_cast<int>(c / g.width);
-      for (int d = 0; d < 4; ++d) {
-        const int nx = cx + dx[d], ny = cy + dy[d];
-        if (!g.contains(nx, ny)) continue;
-        const std::size_t nc = g.index(nx, ny);
-        if (free[nc] && face[nc] < 0 && same(c, nc)) face[nc] = id, q.push_back(nc);
-      }
-    }
-  }
-
-  // Each face's most interior cell (farthest, in 4-steps, from a cell of another face).
-  const auto representative = [&](int id) {
-    std::vector<int> depth(members[id].size(), -1);
-    std::map<std::size_t, std::size_t> pos;
-    for (std::size_t k = 0; k < members[id].size(); ++k) pos[members[id][k]] = k;
-    std::deque<std::size_t> q;
-    for (std::size_t k = 0; k < members[id].size(); ++k) {
-      const std::size_t c = members[id][k];
-      const int cx = static_cast<int>(c % g.width), cy = static_cast<int>(c / g.width);
-      for (int d = 0; d < 4; ++d) {
-        const int nx = cx + dx[d], ny = cy + dy[d];
-        if (!g.contains(nx, ny) || face[g.index(nx, ny)] != id) {
-          depth[k] = 0;
-          q.push_back(k);
-          break;
-        }
-      }
-    }
-    while (!q.empty()) {
-      const std::size_t k = q.front();
-      q.pop_front();
-      const std::size_t c = members[id][k];
-      const int cx = static_cast<int>(c % g.width), cy = static_cast<int>(c / g.width);
-      for (int d = 0; d < 4; ++d) {
-        const int nx = cx + dx[d], ny = cy + dy[d];
-        if (!g.contains(nx, ny)) continue;
-        const auto it = pos.find(g.index(nx, ny));
-        if (it != pos.end() && depth[it->second] < 0) {
-          depth[it->second] = depth[k] + 1;
-          q.push_back(it->second);
-        }
-      }
-    }
-    const std::size_t best =
-        static_cast<std::size_t>(std::max_element(depth.begin(), depth.end()) - depth.begin());
-    const std::size_t c = members[id][best];
-    return centre(static_cast<int>(c % g.width), static_cast<int>(c / g.width));
-  };
-
-  // Labels from a dense noise-free scan at each face's representative point, heading 0.
-  const double reach = 2.0 * (hi - lo).norm() + 1.0;
-  ScanLabelOptions dense = o.label;
-  dense.median_window = 1;
-  const int nf = static_cast<int>(members.size());
-  std::vector<Sector> faces(static_cast<std::size_t>(nf));
-  for (int id = 0; id < nf; ++id) {
-    Sector& s = faces[id];
-    s.representative = representative(id);
-    s.cells = static_cast<int>(members[id].size());
-    const std::size_t c0 = members[id].front();
-    for (int k = 0; k < nv; ++k) {
-      if (bits[c0 * words + k / 64] >> (k % 64) & 1) s.visible.push_back(k);
-    }
-    const RangeScan scan =
-        polygon_scan(map, {s.representative.x(), s.representative.y(), 0.0}, o.label_beams, reach);
-    const ScanLabel l = construct_scan_label(scan, dense);
-    s.label = l.label;
-    for (std::size_t k = 0; k < l.label.size(); ++k) {
-      int feature = -1;
-      if (l.label[k] == 'M' || l.label[k] == 'D') {
-        const int b = l.beam[k];
-        const double r = scan.ranges[b];
-        const Eigen::Vector2d hit =
-            s.representative +
-            r * Eigen::Vector2d(std::cos(scan.angles[b]), std::sin(scan.angles[b]));
-        double best = std::max(0.05, 4.0 * r * 2.0 * std::numbers::pi / o.label_beams);
-        for (int v : s.visible) {
-          const double d = (geo.v[v] - hit).norm();
-          if (d < best) best = d, feature = v;
-        }
-      }
-      s.features.push_back(feature);
-    }
-  }
-
-  // Adjacent faces with one label are one sector (seed 000's merge).
-  std::vector<int> parent(static_cast<std::size_t>(nf));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (std::size_t c = 0; c < cells; ++c) {
-    if (face[c] < 0) continue;
-    const int cx = static_cast<int>(c % g.width), cy = static_cast<int>(c / g.width);
-    for (int d = 0; d < 2; ++d) {  // east and north neighbours
-      const int nx = cx + (d == 0), ny = cy + (d == 1);
-      if (!g.contains(nx, ny)) continue;
-      const int f = face[g.index(nx, ny)];
-      if (f >= 0 && f != face[c] && faces[f].label == faces[face[c]].label) {
-        parent[find(f)] = find(face[c]);
-      }
-    }
-  }
-  // The largest face of each merged group speaks for it (representative, visible set,
-  // features); the cells add up.
-  std::vector<int> largest(static_cast<std::size_t>(nf), -1),
-      total(static_cast<std::size_t>(nf), 0);
-  for (int id = 0; id < nf; ++id) {
-    const int root = find(id);
-    if (largest[root] < 0 || faces[id].cells > faces[largest[root]].cells) largest[root] = id;
-    total[root] += faces[id].cells;
-  }
-  std::vector<int> sector_of_face(static_cast<std::size_t>(nf), -1);
-  for (int id = 0; id < nf; ++id) {
-    const int root = find(id);
-    if (sector_of_face[root] < 0) {
-      sector_of_face[root] = static_cast<int>(out.sectors.size());
-      out.sectors.push_back(faces[largest[root]]);
-      out.sectors.back().cells = total[root];
-    }
-    sector_of_face[id] = sector_of_face[root];
-  }
-  out.sector_of.assign(cells, -1);
-  for (std::size_t c = 0; c < cells; ++c) {
-    if (face[c] >= 0) out.sector_of[c] = sector_of_face[face[c]];
-  }
-  for (auto& s : out.sectors) s.area_m2 = s.cells * o.cell_m * o.cell_m;
-
-  // Seed 000 §4.1: labels one turn away from another sector's are ambiguous.
-  for (std::size_t a = 0; a < out.sectors.size(); ++a) {
-    for (std::size_t b = a + 1; b < out.sectors.size(); ++b) {
-      if (cyclic_equal(out.sectors[a].label, out.sectors[b].label)) {
-        out.sectors[a].ambiguous = out.sectors[b].ambiguous = true;
-      }
-    }
-  }
-
-  // Seed 000 eq. (10)-(11): alpha = the smallest angle a fully visible edge subtends.
-  std::vector<double> alpha(out.sectors.size(), std::numeric_limits<double>::infinity());
-  for (std::size_t c = 0; c < cells; ++c) {
-    const int s = out.sector_of[c];
-    if (s < 0) continue;
-    const Eigen::Vector2d p = centre(static_cast<int>(c % g.width), static_cast<int>(c / g.width));
-    // Where the robot cannot stand (nearer a wall than the clearance) does not count: at a
-    // wall, the wall itself subtends no angle and N_min has no bound (seed 000 §4.2).
-    double wall = std::numeric_limits<double>::infinity();
-    for (const auto& [i, j] : geo.edges) {
-      const Eigen::Vector2d e = geo.v[j] - geo.v[i];
-      const double t = std::clamp((p - geo.v[i]).dot(e) / e.squaredNorm(), 0.0, 1.0);
-      wall = std::min(wall, (geo.v[i] + t * e - p).norm());
-    }
-    if (wall < o.clearance_m) continue;
-    for (const auto& [i, j] : geo.edges) {
-      const bool vi = bits[c * words + i / 64] >> (i % 64) & 1;
-      const bool vj = bits[c * words + j / 64] >> (j % 64) & 1;
-      if (!vi || !vj) continue;
-      const Eigen::Vector2d a = geo.v[i] - p, b = geo.v[j] - p;
-      alpha[s] = std::min(alpha[s], std::abs(std::atan2(cross(a, b), a.dot(b))));
-    }
-  }
-  for (std::size_t s = 0; s < out.sectors.size(); ++s) {
-    if (!std::isfinite(alpha[s]) || alpha[s] <= 0.0) continue;
-    out.sectors[s].n_min = static_cast<int>(std::ceil(6.0 * std::numbers::pi / alpha[s]));
-    out.sectors[s].n_min_two = static_cast<int>(std::ceil(4.0 * std::numbers::pi / alpha[s]));
-  }
+  const Box box = bounding_box(map.boundary);
+  out.grid = sampling_grid(box, options.cell_m);
+  const Visibility visibility = visible_vertices(map, geo, out.grid);
+  const Faces faces = connected_faces(out.grid, visibility);
+  const double reach = 2.0 * (box.hi - box.lo).norm() + 1.0;
+  const std::vector<Sector> face_sector =
+      face_sectors(map, geo, out.grid, visibility, faces, reach, options);
+  merge_equal_labels(out.grid, faces, face_sector, options.cell_m, out);
+  mark_turned_twins(out.sectors);
+  set_minimum_readings(geo, visibility, options.clearance_m, out);
   return out;
 }
 
