@@ -34,45 +34,48 @@ SectorFix SectorEstimator::fix(const Observation& observation) const {
   return localize_in_sectors(sectors_, *observation.scan, options_.localization);
 }
 
-Estimate SectorEstimator::to_estimate(const SectorFix& f, const SearchWindow& window,
+Estimate SectorEstimator::to_estimate(const SectorFix& sector_fix, const SearchWindow& window,
                                       double elapsed_ms) const {
-  Estimate e;
-  e.pose = e.lattice_pose = f.found ? f.pose : window.center;
-  e.confidence = f.found ? std::exp(-f.residual_m / options_.residual_scale_m) : 0.0;
-  e.score = e.normalized_score = e.confidence;
-  e.second_score = std::numeric_limits<double>::quiet_NaN();
-  e.confidence_parts.fit = e.confidence;
-  e.confidence_parts.agreement = 1.0;
-  e.confidence_parts.distinctness = f.ambiguous ? 0.0 : 1.0;
-  e.confidence_parts.sharpness = 1.0;
-  e.agreement = std::numeric_limits<double>::quiet_NaN();
-  e.ambiguous = f.ambiguous;
-  e.verdict = !f.found || e.confidence < options_.localized_confidence ? Verdict::NotLocalized
-              : f.ambiguous                                            ? Verdict::Ambiguous
-                                                                       : Verdict::Localized;
-  e.on_window_edge = f.found && (std::abs(f.pose.x - window.center.x) > window.half_xy ||
-                                 std::abs(f.pose.y - window.center.y) > window.half_xy);
+  Estimate result;
+  result.pose = result.lattice_pose = sector_fix.found ? sector_fix.pose : window.center;
+  result.confidence =
+      sector_fix.found ? std::exp(-sector_fix.residual_m / options_.residual_scale_m) : 0.0;
+  result.score = result.normalized_score = result.confidence;
+  result.second_score = std::numeric_limits<double>::quiet_NaN();
+  result.confidence_parts.fit = result.confidence;
+  result.confidence_parts.agreement = 1.0;
+  result.confidence_parts.distinctness = sector_fix.ambiguous ? 0.0 : 1.0;
+  result.confidence_parts.sharpness = 1.0;
+  result.agreement = std::numeric_limits<double>::quiet_NaN();
+  result.ambiguous = sector_fix.ambiguous;
+  result.verdict = !sector_fix.found || result.confidence < options_.localized_confidence
+                       ? Verdict::NotLocalized
+                   : sector_fix.ambiguous ? Verdict::Ambiguous
+                                          : Verdict::Localized;
+  result.on_window_edge =
+      sector_fix.found && (std::abs(sector_fix.pose.x - window.center.x) > window.half_xy ||
+                           std::abs(sector_fix.pose.y - window.center.y) > window.half_xy);
   // The look-alikes of an ambiguous fix, best first, scored like the confidence.
-  for (const SectorFix::Alternative& a : f.alternatives) {
-    e.alternatives.push_back({a.pose, std::exp(-a.residual_m / options_.residual_scale_m)});
+  for (const SectorFix::Alternative& a : sector_fix.alternatives) {
+    result.alternatives.push_back({a.pose, std::exp(-a.residual_m / options_.residual_scale_m)});
   }
-  if (e.alternatives.empty()) e.alternatives = {{e.pose, e.score}};
-  if (e.alternatives.size() > 1) e.second_score = e.alternatives[1].score;
-  e.covariance = f.covariance;
-  e.stats.poses_scored = f.candidates;
-  e.stats.proven_optimal = false;
-  e.stats.upper_bound = std::numeric_limits<double>::quiet_NaN();
-  e.stats.elapsed_ms = elapsed_ms;
-  return e;
+  if (result.alternatives.empty()) result.alternatives = {{result.pose, result.score}};
+  if (result.alternatives.size() > 1) result.second_score = result.alternatives[1].score;
+  result.covariance = sector_fix.covariance;
+  result.stats.poses_scored = sector_fix.candidates;
+  result.stats.proven_optimal = false;
+  result.stats.upper_bound = std::numeric_limits<double>::quiet_NaN();
+  result.stats.elapsed_ms = elapsed_ms;
+  return result;
 }
 
 SectorEstimate SectorEstimator::locate(const Observation& observation,
                                        const SearchWindow& window) const {
   validate(window);
   const auto t0 = std::chrono::steady_clock::now();
-  SectorFix f = fix(observation);
-  Estimate e = to_estimate(f, window, ms_since(t0));
-  return {std::move(e), std::move(f)};
+  SectorFix sector_fix = fix(observation);
+  Estimate result = to_estimate(sector_fix, window, ms_since(t0));
+  return {std::move(result), std::move(sector_fix)};
 }
 
 Estimate SectorEstimator::estimate(const Observation& observation,
@@ -103,27 +106,27 @@ SectorEstimate SectorCorrelationEstimator::locate(const Observation& observation
                                                   const SearchWindow& window) const {
   validate(window);
   const auto t0 = std::chrono::steady_clock::now();
-  SectorFix f = sectors_->fix(observation);
-  Estimate e = sectors_->to_estimate(f, window, 0.0);
-  if (f.found) {
+  SectorFix sector_fix = sectors_->fix(observation);
+  Estimate result = sectors_->to_estimate(sector_fix, window, 0.0);
+  if (sector_fix.found) {
     SearchWindow local = correlation_->global_window(observation);  // its heading step
-    local.center = f.pose;
+    local.center = sector_fix.pose;
     local.half_xy = options_.half_xy;
     local.half_theta = options_.half_theta;
-    const Estimate c = correlation_->estimate(observation, local);
-    e.pose = c.pose;
-    e.lattice_pose = c.lattice_pose;
-    e.score = c.score;
-    e.normalized_score = c.normalized_score;
-    e.covariance = c.covariance;
-    e.alternatives.front() = {e.pose, e.score};  // the look-alikes stay the fix's
-    e.stats.cells_scored = c.stats.cells_scored;
-    e.stats.poses_scored += c.stats.poses_scored;
-    e.on_window_edge = std::abs(e.pose.x - window.center.x) > window.half_xy ||
-                       std::abs(e.pose.y - window.center.y) > window.half_xy;
+    const Estimate refined = correlation_->estimate(observation, local);
+    result.pose = refined.pose;
+    result.lattice_pose = refined.lattice_pose;
+    result.score = refined.score;
+    result.normalized_score = refined.normalized_score;
+    result.covariance = refined.covariance;
+    result.alternatives.front() = {result.pose, result.score};  // the look-alikes stay the fix's
+    result.stats.cells_scored = refined.stats.cells_scored;
+    result.stats.poses_scored += refined.stats.poses_scored;
+    result.on_window_edge = std::abs(result.pose.x - window.center.x) > window.half_xy ||
+                            std::abs(result.pose.y - window.center.y) > window.half_xy;
   }
-  e.stats.elapsed_ms = ms_since(t0);
-  return {std::move(e), std::move(f)};
+  result.stats.elapsed_ms = ms_since(t0);
+  return {std::move(result), std::move(sector_fix)};
 }
 
 }  // namespace gridloc

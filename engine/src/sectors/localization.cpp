@@ -42,15 +42,15 @@ std::vector<Variant> variants(const std::string& label, int pairs) {
       for (int i = 0; i < n && n >= 2; ++i) {
         const int j = (i + 1) % n;
         if (!is_pair(out[v].label[i], out[v].label[j])) continue;
-        Variant w;
+        Variant shorter;
         for (int k = 0; k < n; ++k) {
           if (k == i || k == j) continue;
-          w.label.push_back(out[v].label[k]);
-          w.index.push_back(out[v].index[k]);
+          shorter.label.push_back(out[v].label[k]);
+          shorter.index.push_back(out[v].index[k]);
         }
         const bool seen = std::any_of(out.begin(), out.end(),
-                                      [&](const Variant& x) { return x.index == w.index; });
-        if (!seen) out.push_back(std::move(w));
+                                      [&](const Variant& x) { return x.index == shorter.index; });
+        if (!seen) out.push_back(std::move(shorter));
       }
     }
     from = to;
@@ -60,44 +60,47 @@ std::vector<Variant> variants(const std::string& label, int pairs) {
 
 /// The vertex at an M reading: the intersection of the lines fitted to `k` readings on each
 /// side (seed 000 eqs. (6)-(9)), or the reading itself when they are near parallel.
-Eigen::Vector2d locate_vertex(const std::vector<Eigen::Vector2d>& pts, int beam, int k) {
-  const int n = static_cast<int>(pts.size());
-  const auto P = [&](int i) { return pts[((i % n) + n) % n]; };
-  const auto fit = [&](int dir, Eigen::Vector2d& c, Eigen::Vector2d& d) {
-    c.setZero();
-    for (int s = 1; s <= k; ++s) c += P(beam + dir * s);
-    c /= k;
-    Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
-    for (int s = 1; s <= k; ++s) S += (P(beam + dir * s) - c) * (P(beam + dir * s) - c).transpose();
-    d = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvectors().col(1);
+Eigen::Vector2d locate_vertex(const std::vector<Eigen::Vector2d>& points, int beam,
+                              int line_points) {
+  const int n = static_cast<int>(points.size());
+  const auto point = [&](int i) { return points[((i % n) + n) % n]; };
+  // The line through `line_points` readings on one side (dir +1 or -1): centre, direction.
+  const auto fit = [&](int dir, Eigen::Vector2d& centre, Eigen::Vector2d& direction) {
+    centre.setZero();
+    for (int s = 1; s <= line_points; ++s) centre += point(beam + dir * s);
+    centre /= line_points;
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    for (int s = 1; s <= line_points; ++s)
+      scatter += (point(beam + dir * s) - centre) * (point(beam + dir * s) - centre).transpose();
+    direction = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(1);
   };
   Eigen::Vector2d c1, d1, c2, d2;
   fit(+1, c1, d1);
   fit(-1, c2, d2);
   const double den = d1.x() * d2.y() - d1.y() * d2.x();
-  if (std::abs(den) < 0.05) return P(beam);  // < 3 deg apart: no corner to intersect
+  if (std::abs(den) < 0.05) return point(beam);  // < 3 deg apart: no corner to intersect
   const Eigen::Vector2d w = c2 - c1;
   const double t = (w.x() * d2.y() - w.y() * d2.x()) / den;
   const Eigen::Vector2d v = c1 + t * d1;
   // A corner far from its reading is a bad fit (another surface in the window).
-  return (v - P(beam)).norm() < 0.3 + 0.05 * P(beam).norm() ? v : P(beam);
+  return (v - point(beam)).norm() < 0.3 + 0.05 * point(beam).norm() ? v : point(beam);
 }
 
 /// Rigid fit: the pose (R, t) with world = R * local + t, least squares.
 Pose2 rigid_fit(const std::vector<Eigen::Vector2d>& local,
                 const std::vector<Eigen::Vector2d>& world) {
-  Eigen::Vector2d lc = Eigen::Vector2d::Zero(), wc = Eigen::Vector2d::Zero();
-  for (std::size_t k = 0; k < local.size(); ++k) lc += local[k], wc += world[k];
-  lc /= static_cast<double>(local.size());
-  wc /= static_cast<double>(world.size());
+  Eigen::Vector2d local_centre = Eigen::Vector2d::Zero(), world_centre = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < local.size(); ++k) local_centre += local[k], world_centre += world[k];
+  local_centre /= static_cast<double>(local.size());
+  world_centre /= static_cast<double>(world.size());
   double s = 0.0, c = 0.0;
   for (std::size_t k = 0; k < local.size(); ++k) {
-    const Eigen::Vector2d a = local[k] - lc, b = world[k] - wc;
+    const Eigen::Vector2d a = local[k] - local_centre, b = world[k] - world_centre;
     c += a.dot(b);
     s += a.x() * b.y() - a.y() * b.x();
   }
   const double theta = std::atan2(s, c);
-  const Eigen::Vector2d t = wc - Eigen::Rotation2Dd(theta) * lc;
+  const Eigen::Vector2d t = world_centre - Eigen::Rotation2Dd(theta) * local_centre;
   return {t.x(), t.y(), theta};
 }
 
@@ -124,11 +127,12 @@ std::vector<std::vector<int>> skeleton_variants(const std::string& label,
       for (int i = 0; i < n && n >= 4; ++i) {
         const int j = (i + 1) % n;
         if (label[out[v][i]] == label[out[v][j]]) continue;  // DD or cc: not a pair
-        std::vector<int> w;
+        std::vector<int> shorter;
         for (int k = 0; k < n; ++k) {
-          if (k != i && k != j) w.push_back(out[v][k]);
+          if (k != i && k != j) shorter.push_back(out[v][k]);
         }
-        if (std::find(out.begin(), out.end(), w) == out.end()) out.push_back(std::move(w));
+        if (std::find(out.begin(), out.end(), shorter) == out.end())
+          out.push_back(std::move(shorter));
       }
     }
     from = to;
@@ -175,7 +179,7 @@ struct NormalEquations {
 
 NormalEquations normal_equations(const std::vector<Eigen::Vector2d>& points,
                                  const std::vector<Wall>& walls, const Pose2& pose, double gate) {
-  NormalEquations ne;
+  NormalEquations equations;
   const Eigen::Rotation2Dd R(pose.theta);
   const Eigen::Vector2d t(pose.x, pose.y);
   for (const auto& p : points) {
@@ -191,12 +195,12 @@ NormalEquations normal_equations(const std::vector<Eigen::Vector2d>& points,
     if (nearest == nullptr) continue;
     const Eigen::Vector2d& n = nearest->normal;
     const Eigen::Vector3d J(n.x(), n.y(), n.dot(Eigen::Vector2d(-rp.y(), rp.x())));
-    ne.H += J * J.transpose();
-    ne.g += J * r;
-    ne.sum2 += r * r;
-    ++ne.used;
+    equations.H += J * J.transpose();
+    equations.g += J * r;
+    equations.sum2 += r * r;
+    ++equations.used;
   }
-  return ne;
+  return equations;
 }
 
 /// Gauss-Newton on the distances from the scan's points (robot frame) to their nearest map
@@ -205,9 +209,9 @@ NormalEquations normal_equations(const std::vector<Eigen::Vector2d>& points,
 Pose2 polish(const std::vector<Eigen::Vector2d>& points, const std::vector<Wall>& walls,
              Pose2 pose) {
   for (const double gate : {0.3, 0.15, 0.08, 0.04, 0.04}) {
-    const NormalEquations ne = normal_equations(points, walls, pose, gate);
-    if (ne.used < 3) break;
-    const Eigen::Vector3d step = ne.H.ldlt().solve(-ne.g);
+    const NormalEquations equations = normal_equations(points, walls, pose, gate);
+    if (equations.used < 3) break;
+    const Eigen::Vector3d step = equations.H.ldlt().solve(-equations.g);
     if (!step.allFinite()) break;
     pose = {pose.x + step.x(), pose.y + step.y(), normalize_angle(pose.theta + step.z())};
   }
@@ -219,10 +223,10 @@ Pose2 polish(const std::vector<Eigen::Vector2d>& points, const std::vector<Wall>
 /// free (a corridor's axis).
 Eigen::Matrix3d pose_covariance(const std::vector<Eigen::Vector2d>& points,
                                 const std::vector<Wall>& walls, const Pose2& pose) {
-  const NormalEquations ne = normal_equations(points, walls, pose, 0.04);
-  const Eigen::Matrix3d& H = ne.H;
-  const int used = ne.used;
-  const double sum2 = ne.sum2;
+  const NormalEquations equations = normal_equations(points, walls, pose, 0.04);
+  const Eigen::Matrix3d& H = equations.H;
+  const int used = equations.used;
+  const double sum2 = equations.sum2;
   const double inf = std::numeric_limits<double>::infinity();
   Eigen::Matrix3d cov = Eigen::Matrix3d::Constant(inf);
   if (used <= 3) return cov;
@@ -559,20 +563,23 @@ void match_skeletons(const Problem& problem, PoseMemo& memo, std::vector<Candida
       skeleton_variants(scan_label, scan_skeleton, options.max_deleted_jumps);
   for (std::size_t s = 0; s < problem.sectors.sectors.size(); ++s) {
     const std::string& label = problem.sectors.sectors[s].label;
-    const std::vector<int> sk = skeleton(label);
+    const std::vector<int> sector_skeleton = skeleton(label);
     const std::size_t ks = scan_skeleton.size();
-    if (sk.size() == ks) add_skeleton_turns(problem, memo, s, scan_skeleton, sk, 0, found);
+    if (sector_skeleton.size() == ks)
+      add_skeleton_turns(problem, memo, s, scan_skeleton, sector_skeleton, 0, found);
     // One side's pairs left out, never both (that would match too much).
-    if (sk.size() < ks) {
-      for (const auto& qa : jump_variants) {
-        if (qa.size() == sk.size())
-          add_skeleton_turns(problem, memo, s, qa, sk, static_cast<int>(ks - qa.size()) / 2, found);
+    if (sector_skeleton.size() < ks) {
+      for (const auto& scan_jumps : jump_variants) {
+        if (scan_jumps.size() == sector_skeleton.size())
+          add_skeleton_turns(problem, memo, s, scan_jumps, sector_skeleton,
+                             static_cast<int>(ks - scan_jumps.size()) / 2, found);
       }
-    } else if (sk.size() > ks) {
-      for (const auto& sa : skeleton_variants(label, sk, options.max_deleted_jumps)) {
-        if (sa.size() == ks)
-          add_skeleton_turns(problem, memo, s, scan_skeleton, sa,
-                             static_cast<int>(sk.size() - ks) / 2, found);
+    } else if (sector_skeleton.size() > ks) {
+      for (const auto& sector_jumps :
+           skeleton_variants(label, sector_skeleton, options.max_deleted_jumps)) {
+        if (sector_jumps.size() == ks)
+          add_skeleton_turns(problem, memo, s, scan_skeleton, sector_jumps,
+                             static_cast<int>(sector_skeleton.size() - ks) / 2, found);
       }
     }
   }
@@ -612,38 +619,38 @@ bool near_vertex(const Problem& problem, const Pose2& at, const Eigen::Vector2d&
 void add_lookalikes(const Problem& problem, PoseMemo& memo, std::vector<Candidate>& found) {
   if (!problem.options.lookalike_search || found.empty()) return;
   const Candidate winner = *best_candidate(problem.sectors, found);
-  const auto& v = problem.sectors.vertices;
+  const auto& vertices = problem.sectors.vertices;
   // Only the located corners that land on a map vertex at the winner's own pose: the
   // polish may have moved it from where its rough fit put a wall point.
-  std::vector<Eigen::Vector2d> q;
+  std::vector<Eigen::Vector2d> corners;
   for (const auto& p : winner.located) {
-    if (near_vertex(problem, winner.pose, p)) q.push_back(p);
+    if (near_vertex(problem, winner.pose, p)) corners.push_back(p);
   }
-  if (q.size() < 2) return;
+  if (corners.size() < 2) return;
   std::size_t a = 0, b = 1;
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    for (std::size_t j = i + 1; j < q.size(); ++j) {
-      if ((q[i] - q[j]).norm() > (q[a] - q[b]).norm()) a = i, b = j;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (std::size_t j = i + 1; j < corners.size(); ++j) {
+      if ((corners[i] - corners[j]).norm() > (corners[a] - corners[b]).norm()) a = i, b = j;
     }
   }
-  const double d = (q[a] - q[b]).norm();
+  const double spread = (corners[a] - corners[b]).norm();
   const double beam_step = problem.view.beam_step;
   const double tolerance =
-      2.0 * std::max(allowance(beam_step, q[a]), allowance(beam_step, q[b])) - 0.3;
-  if (!(d > 0.3)) return;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    for (std::size_t j = 0; j < v.size(); ++j) {
-      if (i == j || std::abs((v[i] - v[j]).norm() - d) > tolerance) continue;
-      const Pose2 rough = rigid_fit({q[a], q[b]}, {v[i], v[j]});
-      const bool lands = std::all_of(q.begin(), q.end(), [&](const Eigen::Vector2d& p) {
+      2.0 * std::max(allowance(beam_step, corners[a]), allowance(beam_step, corners[b])) - 0.3;
+  if (!(spread > 0.3)) return;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    for (std::size_t j = 0; j < vertices.size(); ++j) {
+      if (i == j || std::abs((vertices[i] - vertices[j]).norm() - spread) > tolerance) continue;
+      const Pose2 rough = rigid_fit({corners[a], corners[b]}, {vertices[i], vertices[j]});
+      const bool lands = std::all_of(corners.begin(), corners.end(), [&](const Eigen::Vector2d& p) {
         return near_vertex(problem, rough, p);
       });
       if (!lands) continue;
       const Pose2 pose = memo.polished(problem, rough, false);
       const int sector = problem.sectors.sector_at({pose.x, pose.y});
       if (sector < 0) continue;
-      found.push_back(
-          {sector, pose, winner.deleted + 1, winner.matched, memo.residual_at(problem, pose), q});
+      found.push_back({sector, pose, winner.deleted + 1, winner.matched,
+                       memo.residual_at(problem, pose), corners});
     }
   }
 }

@@ -174,11 +174,11 @@ ScanLabel label_of(std::vector<Event> events) {
 ScanLabel construct_scan_label(const RangeScan& scan, const ScanLabelOptions& options) {
   validate(scan);
   check_options(options);
-  const std::vector<double> r =
+  const std::vector<double> readings =
       median_filtered(bridged_readings(scan, options), options.median_window);
-  Jumps jumps = find_jumps(r, options);
-  std::vector<Extremum> extrema = find_extrema(r, jumps.at_beam);
-  drop_shallow_pairs(extrema, r, jumps.run, options.prominence_m);
+  Jumps jumps = find_jumps(readings, options);
+  std::vector<Extremum> extrema = find_extrema(readings, jumps.at_beam);
+  drop_shallow_pairs(extrema, readings, jumps.run, options.prominence_m);
   int order = static_cast<int>(jumps.events.size());  // the jumps' events come first
   for (const auto& e : extrema) jumps.events.push_back({e.beam, order++, e.kind});
   return label_of(std::move(jumps.events));

@@ -23,32 +23,33 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 /// The environment's vertices with, for each, its ring neighbours (free space on the left
 /// of prev -> v -> next), and its edges as vertex index pairs.
 struct Geometry {
-  std::vector<Eigen::Vector2d> v;
+  std::vector<Eigen::Vector2d> vertices;
   std::vector<int> prev, next;
   std::vector<std::pair<int, int>> edges;
 
   explicit Geometry(const PolygonMap& map) {
     const auto add = [&](const Polygon& ring) {
-      const int base = static_cast<int>(v.size());
+      const int base = static_cast<int>(vertices.size());
       const int n = static_cast<int>(ring.size());
       for (int i = 0; i < n; ++i) {
-        v.push_back(ring[i]);
+        vertices.push_back(ring[i]);
         prev.push_back(base + (i + n - 1) % n);
         next.push_back(base + (i + 1) % n);
         edges.emplace_back(base + i, base + (i + 1) % n);
       }
     };
     add(map.boundary);
-    for (const auto& o : map.obstacles) add(o);
+    for (const auto& obstacle : map.obstacles) add(obstacle);
   }
 
   /// Vertex k is visible from p: the segment leaves k into free space (inside the wedge
   /// between its two edges) and properly crosses no edge.
   bool visible(const Eigen::Vector2d& p, int k) const {
-    const Eigen::Vector2d d = p - v[k];
+    const Eigen::Vector2d d = p - vertices[k];
     if (d.squaredNorm() == 0.0) return true;
-    const Eigen::Vector2d out = v[next[k]] - v[k], in = v[prev[k]] - v[k];
-    // Free space lies counter-clockwise from `out` to `in` around v[k].
+    const Eigen::Vector2d out = vertices[next[k]] - vertices[k],
+                          in = vertices[prev[k]] - vertices[k];
+    // Free space lies counter-clockwise from `out` to `in` around vertices[k].
     const auto ccw_angle = [](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
       double a = std::atan2(cross(from, to), from.dot(to));
       return a < 0.0 ? a + 2.0 * std::numbers::pi : a;
@@ -57,9 +58,9 @@ struct Geometry {
     if (!(a > 0.0 && a < ccw_angle(out, in))) return false;
     for (const auto& [i, j] : edges) {
       if (i == k || j == k) continue;
-      const Eigen::Vector2d &a0 = v[i], &a1 = v[j];
-      const double o1 = cross(a1 - a0, p - a0), o2 = cross(a1 - a0, v[k] - a0);
-      const double o3 = cross(v[k] - p, a0 - p), o4 = cross(v[k] - p, a1 - p);
+      const Eigen::Vector2d &a0 = vertices[i], &a1 = vertices[j];
+      const double o1 = cross(a1 - a0, p - a0), o2 = cross(a1 - a0, vertices[k] - a0);
+      const double o3 = cross(vertices[k] - p, a0 - p), o4 = cross(vertices[k] - p, a1 - p);
       if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) &&
           ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
         return false;
@@ -72,7 +73,7 @@ struct Geometry {
 bool in_free_space(const PolygonMap& map, const Eigen::Vector2d& p) {
   if (!inside(map.boundary, p)) return false;
   return std::none_of(map.obstacles.begin(), map.obstacles.end(),
-                      [&](const Polygon& o) { return inside(o, p); });
+                      [&](const Polygon& obstacle) { return inside(obstacle, p); });
 }
 
 /// The 4-neighbourhood's steps: east, west, north, south.
@@ -144,8 +145,9 @@ struct Visibility {
 };
 
 /// The free cells and their visible-vertex sets (exact segment tests per cell centre).
-Visibility visible_vertices(const PolygonMap& map, const Geometry& geo, const GridGeometry& grid) {
-  const int nv = static_cast<int>(geo.v.size());
+Visibility visible_vertices(const PolygonMap& map, const Geometry& geometry,
+                            const GridGeometry& grid) {
+  const int nv = static_cast<int>(geometry.vertices.size());
   Visibility out;
   out.words = (nv + 63) / 64;
   const std::size_t cells = grid.size();
@@ -159,7 +161,8 @@ Visibility visible_vertices(const PolygonMap& map, const Geometry& geo, const Gr
       const std::size_t c = grid.index(ix, iy);
       out.free[c] = 1;
       for (int k = 0; k < nv; ++k) {
-        if (geo.visible(p, k)) out.bits[c * out.words + k / 64] |= std::uint64_t{1} << (k % 64);
+        if (geometry.visible(p, k))
+          out.bits[c * out.words + k / 64] |= std::uint64_t{1} << (k % 64);
       }
     }
   }
@@ -244,7 +247,7 @@ std::size_t most_interior_cell(const GridGeometry& grid, const Faces& faces, int
 
 /// Per character of a label read by `scan` from `origin`: the visible vertex nearest the
 /// reading of an M or D (within four beam steps and at least 5 cm), else -1.
-std::vector<int> label_features(const Geometry& geo, const std::vector<int>& visible,
+std::vector<int> label_features(const Geometry& geometry, const std::vector<int>& visible,
                                 const Eigen::Vector2d& origin, const RangeScan& scan,
                                 const ScanLabel& label, int label_beams) {
   std::vector<int> features;
@@ -257,7 +260,7 @@ std::vector<int> label_features(const Geometry& geo, const std::vector<int>& vis
           origin + r * Eigen::Vector2d(std::cos(scan.angles[b]), std::sin(scan.angles[b]));
       double best = std::max(0.05, 4.0 * r * 2.0 * std::numbers::pi / label_beams);
       for (int v : visible) {
-        const double d = (geo.v[v] - hit).norm();
+        const double d = (geometry.vertices[v] - hit).norm();
         if (d < best) best = d, feature = v;
       }
     }
@@ -268,12 +271,12 @@ std::vector<int> label_features(const Geometry& geo, const std::vector<int>& vis
 
 /// One sector per face: its most interior cell, cells and visible set, and the label (with
 /// its features) of a dense noise-free scan from there, heading 0, of range `reach`.
-std::vector<Sector> face_sectors(const PolygonMap& map, const Geometry& geo,
+std::vector<Sector> face_sectors(const PolygonMap& map, const Geometry& geometry,
                                  const GridGeometry& grid, const Visibility& visibility,
                                  const Faces& faces, double reach, const SectorOptions& options) {
   ScanLabelOptions dense = options.label;
   dense.median_window = 1;
-  const int nv = static_cast<int>(geo.v.size());
+  const int nv = static_cast<int>(geometry.vertices.size());
   const int nf = static_cast<int>(faces.members.size());
   std::vector<Sector> out(static_cast<std::size_t>(nf));
   for (int id = 0; id < nf; ++id) {
@@ -288,7 +291,8 @@ std::vector<Sector> face_sectors(const PolygonMap& map, const Geometry& geo,
                                         options.label_beams, reach);
     const ScanLabel label = construct_scan_label(scan, dense);
     s.label = label.label;
-    s.features = label_features(geo, s.visible, s.representative, scan, label, options.label_beams);
+    s.features =
+        label_features(geometry, s.visible, s.representative, scan, label, options.label_beams);
   }
   return out;
 }
@@ -364,12 +368,12 @@ void mark_turned_twins(std::vector<Sector>& sectors) {
 }
 
 /// The distance from `p` to the nearest edge (m).
-double wall_distance(const Geometry& geo, const Eigen::Vector2d& p) {
+double wall_distance(const Geometry& geometry, const Eigen::Vector2d& p) {
   double wall = std::numeric_limits<double>::infinity();
-  for (const auto& [i, j] : geo.edges) {
-    const Eigen::Vector2d e = geo.v[j] - geo.v[i];
-    const double t = std::clamp((p - geo.v[i]).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    wall = std::min(wall, (geo.v[i] + t * e - p).norm());
+  for (const auto& [i, j] : geometry.edges) {
+    const Eigen::Vector2d e = geometry.vertices[j] - geometry.vertices[i];
+    const double t = std::clamp((p - geometry.vertices[i]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    wall = std::min(wall, (geometry.vertices[i] + t * e - p).norm());
   }
   return wall;
 }
@@ -377,8 +381,8 @@ double wall_distance(const Geometry& geo, const Eigen::Vector2d& p) {
 /// Seed 000 eq. (10)-(11): alpha = the smallest angle a fully visible edge subtends over a
 /// sector's cells at least clearance_m from the walls; n_min = 6 pi / alpha, n_min_two =
 /// 4 pi / alpha.
-void set_minimum_readings(const Geometry& geo, const Visibility& visibility, double clearance_m,
-                          SectorMap& out) {
+void set_minimum_readings(const Geometry& geometry, const Visibility& visibility,
+                          double clearance_m, SectorMap& out) {
   const GridGeometry& grid = out.grid;
   std::vector<double> alpha(out.sectors.size(), std::numeric_limits<double>::infinity());
   for (std::size_t c = 0; c < grid.size(); ++c) {
@@ -387,10 +391,10 @@ void set_minimum_readings(const Geometry& geo, const Visibility& visibility, dou
     const Eigen::Vector2d p = centre_of(grid, c);
     // Where the robot cannot stand (nearer a wall than the clearance) does not count: at a
     // wall, the wall itself subtends no angle and N_min has no bound (seed 000 §4.2).
-    if (wall_distance(geo, p) < clearance_m) continue;
-    for (const auto& [i, j] : geo.edges) {
+    if (wall_distance(geometry, p) < clearance_m) continue;
+    for (const auto& [i, j] : geometry.edges) {
       if (!visibility.sees(c, i) || !visibility.sees(c, j)) continue;
-      const Eigen::Vector2d a = geo.v[i] - p, b = geo.v[j] - p;
+      const Eigen::Vector2d a = geometry.vertices[i] - p, b = geometry.vertices[j] - p;
       alpha[s] = std::min(alpha[s], std::abs(std::atan2(cross(a, b), a.dot(b))));
     }
   }
@@ -426,18 +430,18 @@ SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& options) {
   check_options(options);
   SectorMap out;
   out.map = map;
-  const Geometry geo(map);
-  out.vertices = geo.v;
+  const Geometry geometry(map);
+  out.vertices = geometry.vertices;
   const Box box = bounding_box(map.boundary);
   out.grid = sampling_grid(box, options.cell_m);
-  const Visibility visibility = visible_vertices(map, geo, out.grid);
+  const Visibility visibility = visible_vertices(map, geometry, out.grid);
   const Faces faces = connected_faces(out.grid, visibility);
   const double reach = 2.0 * (box.hi - box.lo).norm() + 1.0;
   const std::vector<Sector> face_sector =
-      face_sectors(map, geo, out.grid, visibility, faces, reach, options);
+      face_sectors(map, geometry, out.grid, visibility, faces, reach, options);
   merge_equal_labels(out.grid, faces, face_sector, options.cell_m, out);
   mark_turned_twins(out.sectors);
-  set_minimum_readings(geo, visibility, options.clearance_m, out);
+  set_minimum_readings(geometry, visibility, options.clearance_m, out);
   return out;
 }
 
