@@ -7,7 +7,7 @@
 #include <tuple>
 #include <utility>
 
-#include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 

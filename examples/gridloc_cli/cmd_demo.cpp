@@ -5,9 +5,11 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
-#include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"

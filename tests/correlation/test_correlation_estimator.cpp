@@ -12,7 +12,7 @@
 #include <numbers>
 #include <string>
 
-#include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "test_support.hpp"

@@ -1,5 +1,5 @@
-// Tests of engine/src/evaluation/sonar_protocol.cpp: seed 001's evaluation protocol and free-pose
-// sampling.
+// Tests of engine/src/evaluation/sonar_protocol.cpp: seed 001's evaluation protocol, and of
+// trials.cpp's free-pose sampling.
 #include "gridloc/engine/evaluation/sonar_protocol.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "test_support.hpp"
 

@@ -2,7 +2,8 @@
 /// Seed 001's evaluation protocol (§4, §6): random poses in free space away from walls, a
 /// prior perturbed uniformly within the search window, simulated sonar readings; success when
 /// the position error <= 10 cm and the heading error <= 7 deg. Every configuration sees the
-/// same poses, priors and readings.
+/// same poses, priors and readings. The trials are drawn by trials.hpp, the calibration
+/// measures are metrics.hpp's.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -11,7 +12,6 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/sensors/echo_filter.hpp"
-#include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
 namespace gridloc {
@@ -110,24 +110,6 @@ struct EvalReport {
   std::vector<ConfigurationResult> configurations;
   std::vector<TrialRecord> records;  ///< every trial of every configuration, in run order
 };
-
-/// The AUROC of `scores` for telling positives from negatives (Mann-Whitney; ties count
-/// half); NaN when either group is empty.
-double auroc(const std::vector<double>& positives, const std::vector<double>& negatives);
-
-/// The share of `negatives` strictly below the `recall` quantile of `positives` (the highest
-/// threshold that keeps at least `recall` of the positives at or above it); NaN when either
-/// group is empty.
-double flagged_at_recall(const std::vector<double>& positives, const std::vector<double>& negatives,
-                         double recall);
-
-/// `map` with 2-4 boxes (0.3-0.8 m) added on free cells at least `keep_clear` m from
-/// `keep`: furniture the known map does not have.
-OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double keep_clear, Rng& rng);
-
-/// Draws a pose uniformly in the map whose footprint, grown by `clearance`, covers only free
-/// cells. Throws gridloc::Error when none is found in many attempts.
-Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng);
 
 /// Runs the protocol on each map. `progress(done, total)` is called after every trial.
 EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& ring,

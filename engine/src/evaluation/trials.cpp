@@ -1,0 +1,134 @@
+// Drawing the trials of seed 001's evaluation protocol (trials.hpp).
+#include "gridloc/engine/evaluation/trials.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+/// True when robot-frame point p is inside the footprint or within `clearance` of it.
+bool near_footprint(const Footprint& footprint, const Eigen::Vector2d& p, double clearance) {
+  if (footprint.polygon.size() < 3) return p.norm() <= clearance;
+  if (footprint_contains(footprint, p)) return true;
+  const std::vector<Eigen::Vector2d>& polygon = footprint.polygon;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    if (segment_distance(p, polygon[j], polygon[i]) <= clearance) return true;
+  }
+  return false;
+}
+
+/// True when the footprint at grid-frame `pose`, grown by `clearance`, covers only free cells
+/// of the (2 reach + 1)^2 cells around it.
+bool footprint_clear(const OccupancyMap& map, const Footprint& footprint, const Pose2& pose,
+                     int reach, double clearance) {
+  const GridGeometry& geometry = map.geometry;
+  const Cell center = geometry.cell_of(pose.x, pose.y);
+  const double cs = std::cos(pose.theta), sn = std::sin(pose.theta);
+  for (int iy = center.iy - reach; iy <= center.iy + reach; ++iy) {
+    for (int ix = center.ix - reach; ix <= center.ix + reach; ++ix) {
+      if (geometry.contains(ix, iy) && map.at(ix, iy) == CellState::Free) continue;
+      const Eigen::Vector2d w = geometry.cell_center(ix, iy) - Eigen::Vector2d(pose.x, pose.y);
+      const Eigen::Vector2d p(cs * w.x() + sn * w.y(), -sn * w.x() + cs * w.y());
+      if (near_footprint(footprint, p, clearance + 0.5 * geometry.resolution)) return false;
+    }
+  }
+  return true;
+}
+
+/// True when every cell of the box from cell `a` to cell `z` is on the map and free.
+bool box_free(const OccupancyMap& map, const Cell& a, const Cell& z) {
+  bool free = true;
+  for (int iy = a.iy; iy <= z.iy && free; ++iy) {
+    for (int ix = a.ix; ix <= z.ix && free; ++ix) {
+      free = map.geometry.contains(ix, iy) && map.at(ix, iy) == CellState::Free;
+    }
+  }
+  return free;
+}
+
+/// `center` pulled back onto the map of `geometry`, in the grid frame.
+Pose2 clamped_onto_map(const Pose2& center, const GridGeometry& geometry) {
+  const Pose2 g = geometry.to_grid_frame(center);
+  const double eps = 1e-6;
+  return {std::clamp(g.x, eps, geometry.width * geometry.resolution - eps),
+          std::clamp(g.y, eps, geometry.height * geometry.resolution - eps), g.theta};
+}
+
+}  // namespace
+
+Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng) {
+  const GridGeometry& geometry = map.geometry;
+  double radius = clearance;
+  for (const auto& p : ring.footprint.polygon) radius = std::max(radius, p.norm() + clearance);
+  const int reach = static_cast<int>(std::ceil(radius / geometry.resolution)) + 1;
+  for (int attempt = 0; attempt < 100000; ++attempt) {
+    const Pose2 local{rng.uniform(0.0, geometry.width * geometry.resolution),
+                      rng.uniform(0.0, geometry.height * geometry.resolution),
+                      rng.uniform(-std::numbers::pi, std::numbers::pi)};
+    if (footprint_clear(map, ring.footprint, local, reach, clearance)) {
+      return geometry.to_world_frame(local);
+    }
+  }
+  throw Error("evaluation: found no free pose with the requested clearance on this map");
+}
+
+OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double keep_clear,
+                           Rng& rng) {
+  OccupancyMap world = map;
+  const GridGeometry& geometry = map.geometry;
+  const Pose2 k = geometry.to_grid_frame(keep);
+  const int boxes = 2 + static_cast<int>(rng.next() % 3);
+  for (int b = 0, attempts = 0; b < boxes && attempts < 200; ++attempts) {
+    const double w = rng.uniform(0.3, 0.8), h = rng.uniform(0.3, 0.8);
+    const double x0 = rng.uniform(0.0, geometry.width * geometry.resolution - w);
+    const double y0 = rng.uniform(0.0, geometry.height * geometry.resolution - h);
+    // The box's nearest point to the kept pose must be keep_clear away.
+    const double nx = std::clamp(k.x, x0, x0 + w) - k.x, ny = std::clamp(k.y, y0, y0 + h) - k.y;
+    if (std::hypot(nx, ny) < keep_clear) continue;
+    const Cell a = geometry.cell_of(x0, y0), z = geometry.cell_of(x0 + w, y0 + h);
+    if (!box_free(map, a, z)) continue;
+    for (int iy = a.iy; iy <= z.iy; ++iy) {
+      for (int ix = a.ix; ix <= z.ix; ++ix) world.at(ix, iy) = CellState::Occupied;
+    }
+    ++b;
+  }
+  return world;
+}
+
+PerturbedPrior perturb_prior(SearchWindow window, const Pose2& truth, bool wrong_prior,
+                             const GridGeometry& geometry, Rng& rng) {
+  window.center = {
+      truth.x + rng.uniform(-window.half_xy, window.half_xy),
+      truth.y + rng.uniform(-window.half_xy, window.half_xy),
+      normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
+  if (wrong_prior) {  // one axis 1.5-3 half sizes off: the truth is outside the window
+    // Kept as one expression: the order of its two draws is the compiler's, and the protocol's.
+    const double off = window.half_xy * rng.uniform(1.5, 3.0) * (rng.next() % 2 ? 1 : -1);
+    if (rng.next() % 2) {
+      window.center.x = truth.x + off;
+    } else {
+      window.center.y = truth.y + off;
+    }
+  }
+  // A perturbed prior can leave a map whose edge is close; pull it back onto the map.
+  const Pose2 clamped = clamped_onto_map(window.center, geometry);
+  window.center = geometry.to_world_frame(clamped);
+  // Pulled back onto the map, a wrong prior may hold the truth again: then it is not one.
+  const Pose2 truth_g = geometry.to_grid_frame(truth);
+  wrong_prior = wrong_prior && std::max(std::abs(truth_g.x - clamped.x),
+                                        std::abs(truth_g.y - clamped.y)) > window.half_xy;
+  return {window, wrong_prior};
+}
+
+}  // namespace gridloc
