@@ -7,9 +7,11 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/scan_disturbances.hpp"
+#include "seeds.hpp"
 
 namespace gridloc {
 namespace {
@@ -21,73 +23,264 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
-  return Rng(a * 0x100000001B3ull ^ b).next();
-}
-
 double distance_to_walls(const PolygonMap& map, const Eigen::Vector2d& p) {
-  double d = std::numeric_limits<double>::infinity();
+  double distance = std::numeric_limits<double>::infinity();
   for (const auto& [a, b] : polygon_edges(map)) {
     const Eigen::Vector2d e = b - a;
     const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    d = std::min(d, (a + t * e - p).norm());
+    distance = std::min(distance, (a + t * e - p).norm());
   }
-  return d;
+  return distance;
+}
+
+/// The lowest and the highest corner of the box around `polygon`.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> bounding_box(const Polygon& polygon) {
+  Eigen::Vector2d lo = polygon.front(), hi = lo;
+  for (const auto& p : polygon) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return {lo, hi};
 }
 
 /// A label a scan cannot pin down: another sector's label turned (Sector::ambiguous), or the
 /// label itself turned part of a turn (a rectangle's mMmMmMmM: its sector may hold twin poses).
-bool label_ambiguous(const Sector& s) {
-  if (s.ambiguous) return true;
-  const std::string& l = s.label;
-  const std::size_t n = l.size();
+bool label_ambiguous(const Sector& sector) {
+  if (sector.ambiguous) return true;
+  const std::string& label = sector.label;
+  const std::size_t n = label.size();
   for (std::size_t k = 1; k < n; ++k) {
     if (n % k != 0) continue;
     bool turned_equal = true;
-    for (std::size_t i = 0; i < n && turned_equal; ++i) turned_equal = l[i] == l[(i + k) % n];
+    for (std::size_t i = 0; i < n && turned_equal; ++i) {
+      turned_equal = label[i] == label[(i + k) % n];
+    }
     if (turned_equal) return true;
   }
   return false;
 }
 
-void check(const SectorEvalOptions& o, std::size_t maps) {
-  if (o.trials < 1) throw Error("sector evaluation: trials must be >= 1");
+/// Throws gridloc::Error for options the protocol cannot run.
+void check(const SectorEvalOptions& options, std::size_t maps) {
+  if (options.trials < 1) throw Error("sector evaluation: trials must be >= 1");
   if (maps == 0) throw Error("sector evaluation: no polygon map");
-  if (o.estimators.empty()) throw Error("sector evaluation: no estimator");
-  for (EstimatorKind k : o.estimators) {
-    if (k == EstimatorKind::Icp || k == EstimatorKind::CorrelationIcp) {
-      throw Error("sector evaluation: the " + to_string(k) +
+  if (options.estimators.empty()) throw Error("sector evaluation: no estimator");
+  for (EstimatorKind kind : options.estimators) {
+    if (kind == EstimatorKind::Icp || kind == EstimatorKind::CorrelationIcp) {
+      throw Error("sector evaluation: the " + to_string(kind) +
                   " estimator needs a prior; the sector protocol has none (use sectors, "
                   "sectors+correlation or correlation)");
     }
   }
-  if (o.beams < 36) {
-    throw Error("sector evaluation: beams must be >= 36, got " + std::to_string(o.beams));
+  if (options.beams < 36) {
+    throw Error("sector evaluation: beams must be >= 36, got " + std::to_string(options.beams));
   }
-  if (!(o.max_range > 0.0) || !std::isfinite(o.max_range)) {
+  if (!(options.max_range > 0.0) || !std::isfinite(options.max_range)) {
     throw Error("sector evaluation: max_range must be positive, got " +
-                std::to_string(o.max_range));
+                std::to_string(options.max_range));
   }
-  if (!(o.sigma_m >= 0.0) || !std::isfinite(o.sigma_m)) {
-    throw Error("sector evaluation: sigma_m must be >= 0, got " + std::to_string(o.sigma_m));
+  if (!(options.sigma_m >= 0.0) || !std::isfinite(options.sigma_m)) {
+    throw Error("sector evaluation: sigma_m must be >= 0, got " + std::to_string(options.sigma_m));
   }
-  if (!(o.clearance_m >= 0.0) || !std::isfinite(o.clearance_m)) {
+  if (!(options.clearance_m >= 0.0) || !std::isfinite(options.clearance_m)) {
     throw Error("sector evaluation: clearance_m must be >= 0, got " +
-                std::to_string(o.clearance_m));
+                std::to_string(options.clearance_m));
   }
+}
+
+/// True when `kind` is one of the options' estimators.
+bool uses(const SectorEvalOptions& options, EstimatorKind kind) {
+  return std::count(options.estimators.begin(), options.estimators.end(), kind) > 0;
+}
+
+/// The estimators of one map: the sector estimator always (its sector map labels the
+/// trials), the others when an estimator of the options needs them.
+struct MapEstimators {
+  std::shared_ptr<const SectorEstimator> sectors;
+  std::shared_ptr<const CorrelationEstimator> correlation;  ///< the global search
+  std::unique_ptr<SectorCorrelationEstimator> refined;      ///< sectors+correlation
+};
+
+MapEstimators make_estimators(const PolygonMap& polygons, const SectorEvalOptions& options) {
+  MapEstimators estimators;
+  estimators.sectors = std::make_shared<const SectorEstimator>(polygons, options.sectors);
+  if (uses(options, EstimatorKind::Correlation)) {
+    CorrelationOptions correlation = options.correlation;
+    correlation.reach_m = options.max_range;
+    estimators.correlation =
+        std::make_shared<const CorrelationEstimator>(rasterize_polygon_map(polygons), correlation);
+  }
+  if (uses(options, EstimatorKind::SectorsCorrelation)) {
+    // The local search runs on its own finer lattice: the sector fix is already within
+    // centimetres, and a 10 cm lattice would only blur it.
+    CorrelationOptions fine = options.correlation;
+    fine.reach_m = options.max_range;
+    fine.resolution = options.refinement_resolution;
+    auto local = std::make_shared<const CorrelationEstimator>(
+        rasterize_polygon_map(polygons, options.refinement_resolution), fine);
+    estimators.refined =
+        std::make_unique<SectorCorrelationEstimator>(estimators.sectors, local, options.refinement);
+  }
+  return estimators;
+}
+
+/// The whole map as a window; "not localized" answers sit at its centre.
+SearchWindow whole_map_window(const PolygonMap& polygons) {
+  const auto [lo, hi] = bounding_box(polygons.boundary);
+  SearchWindow window;
+  const Eigen::Vector2d c = 0.5 * (lo + hi);
+  window.center = {c.x(), c.y(), 0.0};
+  window.half_xy = 0.5 * (hi - lo).maxCoeff();
+  window.half_theta = std::numbers::pi;
+  return window;
+}
+
+/// Adds the map's sector count and its count of sectors with an ambiguous label to `report`.
+void count_sectors(const SectorMap& sector_map, SectorEvalReport& report) {
+  int ambiguous_sectors = 0;
+  for (const Sector& sector : sector_map.sectors) {
+    ambiguous_sectors += label_ambiguous(sector) ? 1 : 0;
+  }
+  report.sectors_per_map.push_back(static_cast<int>(sector_map.sectors.size()));
+  report.ambiguous_sectors_per_map.push_back(ambiguous_sectors);
+}
+
+/// What one trial draws; every estimator localizes with the same.
+struct SectorTrial {
+  Pose2 truth;
+  Observation observation;
+  int true_sector = -1;
+  bool ambiguous_label = false;
+  SearchWindow window;
+};
+
+/// Trial `t` on the map at index `map_index`: the truth, then the scan's noise seed, drawn
+/// from the trial's seed in this order.
+SectorTrial draw_trial(const SectorEvalMap& map, std::size_t map_index, int t,
+                       const SectorEvalOptions& options, const MapEstimators& estimators,
+                       const SearchWindow& whole_map) {
+  Rng rng(trial_seed(options.seed, map_index, t));
+  SectorTrial trial;
+  try {
+    trial.truth = sample_polygon_pose(map.polygons, options.clearance_m, rng);
+  } catch (const Error& e) {
+    throw Error(map.name + ": " + e.what());
+  }
+  trial.observation.scan =
+      polygon_scan(map.polygons, trial.truth, options.beams, options.max_range);
+  add_range_noise(*trial.observation.scan, options.sigma_m, rng.next());
+  const SectorMap& sector_map = estimators.sectors->sectors();
+  trial.true_sector = sector_map.sector_at({trial.truth.x, trial.truth.y});
+  trial.ambiguous_label =
+      trial.true_sector >= 0 &&
+      label_ambiguous(sector_map.sectors[static_cast<std::size_t>(trial.true_sector)]);
+  // No prior: the correlation searches the whole map; the sector estimators ignore the
+  // window (it only sets on_window_edge).
+  trial.window =
+      estimators.correlation ? estimators.correlation->global_window(trial.observation) : whole_map;
+  return trial;
+}
+
+/// The errors and times of one estimator, in run order.
+struct EstimatorTally {
+  std::vector<double> position_errors;  ///< m
+  std::vector<double> heading_errors;   ///< deg
+  std::vector<double> ms;
+  std::vector<double> success_position_errors;
+  std::vector<double> success_heading_errors;
+};
+
+/// Localizes trial `t` of map `map_name` with every estimator; tallies and records the
+/// outcomes.
+void score_trial(const SectorTrial& trial, const std::string& map_name, int t,
+                 const MapEstimators& estimators, const SectorEvalOptions& options,
+                 std::vector<EstimatorTally>& tallies, SectorEvalReport& report) {
+  const Pose2& truth = trial.truth;
+  for (std::size_t k = 0; k < tallies.size(); ++k) {
+    const EstimatorKind kind = options.estimators[k];
+    Estimate estimate;
+    int found_sector = -1;
+    if (is_sector_estimator(kind)) {
+      SectorEstimate located = kind == EstimatorKind::Sectors
+                                   ? estimators.sectors->locate(trial.observation, trial.window)
+                                   : estimators.refined->locate(trial.observation, trial.window);
+      estimate = std::move(located.estimate);
+      found_sector = located.fix.found ? located.fix.sector : -1;
+    } else {
+      estimate = estimators.correlation->estimate(trial.observation, trial.window);
+      found_sector = estimators.sectors->sectors().sector_at({estimate.pose.x, estimate.pose.y});
+    }
+    const double position_error = std::hypot(estimate.pose.x - truth.x, estimate.pose.y - truth.y);
+    const double heading_error = std::abs(normalize_angle(estimate.pose.theta - truth.theta));
+    // "Not localized" answers sit at the window's centre: never a success, wherever that is.
+    const bool success = position_error <= options.success_xy &&
+                         heading_error <= options.success_theta &&
+                         estimate.verdict != Verdict::NotLocalized;
+    EstimatorTally& tally = tallies[k];
+    tally.position_errors.push_back(position_error);
+    tally.heading_errors.push_back(rad2deg(heading_error));
+    tally.ms.push_back(estimate.stats.elapsed_ms);
+    if (success) {
+      tally.success_position_errors.push_back(position_error);
+      tally.success_heading_errors.push_back(rad2deg(heading_error));
+    }
+    report.records.push_back({map_name, t, k, truth, trial.true_sector, found_sector,
+                              trial.ambiguous_label, success, position_error,
+                              rad2deg(heading_error), std::move(estimate)});
+  }
+}
+
+/// Adds estimator `k`'s successes, identified sectors, verdicts and ambiguity answers over
+/// `records` to `result`.
+void count_outcomes(const std::vector<SectorTrialRecord>& records, std::size_t k,
+                    SectorEvalResult& result) {
+  for (const SectorTrialRecord& record : records) {
+    if (record.estimator != k) continue;
+    const Verdict v = record.estimate.verdict;
+    result.successes += record.success ? 1 : 0;
+    result.sector_identified +=
+        record.true_sector >= 0 && record.found_sector == record.true_sector ? 1 : 0;
+    result.localized += v == Verdict::Localized ? 1 : 0;
+    result.ambiguous += v == Verdict::Ambiguous ? 1 : 0;
+    result.not_localized += v == Verdict::NotLocalized ? 1 : 0;
+    result.false_fixes += !record.success && v == Verdict::Localized ? 1 : 0;
+    if (record.ambiguous_label) {
+      ++result.ambiguous_label_trials;
+      result.ambiguity_detected += v == Verdict::Ambiguous ? 1 : 0;
+      result.ambiguity_answered_wrongly += !record.success && v == Verdict::Localized ? 1 : 0;
+    }
+  }
+}
+
+/// Estimator `k`'s result over all `total` trials.
+SectorEvalResult summarize(const SectorEvalOptions& options, std::size_t k, int total,
+                           const EstimatorTally& tally,
+                           const std::vector<SectorTrialRecord>& records) {
+  SectorEvalResult result;
+  result.estimator = options.estimators[k];
+  result.trials = total;
+  count_outcomes(records, k, result);
+  result.success_rate = static_cast<double>(result.successes) / total;
+  result.sector_identification_rate = static_cast<double>(result.sector_identified) / total;
+  for (double v : tally.position_errors) result.mean_position_error_m += v / total;
+  for (double v : tally.heading_errors) result.mean_heading_error_deg += v / total;
+  result.median_position_error_m = median(tally.success_position_errors);
+  result.median_heading_error_deg = median(tally.success_heading_errors);
+  result.median_ms = median(tally.ms);
+  const int answered = result.ambiguity_detected + result.ambiguity_answered_wrongly;
+  result.ambiguity_detection_rate = answered > 0
+                                        ? static_cast<double>(result.ambiguity_detected) / answered
+                                        : std::numeric_limits<double>::quiet_NaN();
+  return result;
 }
 
 }  // namespace
 
 Pose2 sample_polygon_pose(const PolygonMap& map, double clearance, Rng& rng) {
-  Eigen::Vector2d lo = map.boundary.front(), hi = lo;
-  for (const auto& p : map.boundary) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const auto [lo, hi] = bounding_box(map.boundary);
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const Eigen::Vector2d p(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()));
     const double theta = rng.uniform(-std::numbers::pi, std::numbers::pi);
     if (!inside(map.boundary, p)) continue;
     if (std::any_of(map.obstacles.begin(), map.obstacles.end(),
-                    [&](const Polygon& o) { return inside(o, p); })) {
+                    [&](const Polygon& obstacle) { return inside(obstacle, p); })) {
       continue;
     }
     if (distance_to_walls(map, p) < clearance) continue;
@@ -101,129 +294,23 @@ SectorEvalReport run_sector_evaluation(const std::vector<SectorEvalMap>& maps,
                                        const SectorEvalOptions& options,
                                        const std::function<void(int, int)>& progress) {
   check(options, maps.size());
-  const std::size_t ne = options.estimators.size();
-  const bool need_correlation = std::count(options.estimators.begin(), options.estimators.end(),
-                                           EstimatorKind::Correlation) > 0;
-  std::vector<std::vector<double>> pos_err(ne), head_err(ne), ms(ne), good_pos(ne), good_head(ne);
+  std::vector<EstimatorTally> tallies(options.estimators.size());
   const int total = options.trials * static_cast<int>(maps.size());
   int done = 0;
   SectorEvalReport report;
-
   for (std::size_t m = 0; m < maps.size(); ++m) {
-    const PolygonMap& polygons = maps[m].polygons;
-    auto sectors = std::make_shared<const SectorEstimator>(polygons, options.sectors);
-    std::shared_ptr<const CorrelationEstimator> correlation;
-    if (need_correlation) {
-      CorrelationOptions c = options.correlation;
-      c.reach_m = options.max_range;
-      correlation =
-          std::make_shared<const CorrelationEstimator>(rasterize_polygon_map(polygons), c);
-    }
-    std::unique_ptr<SectorCorrelationEstimator> refined;
-    if (std::count(options.estimators.begin(), options.estimators.end(),
-                   EstimatorKind::SectorsCorrelation) > 0) {
-      // The local search runs on its own finer lattice: the sector fix is already within
-      // centimetres, and a 10 cm lattice would only blur it.
-      CorrelationOptions fine = options.correlation;
-      fine.reach_m = options.max_range;
-      fine.resolution = options.refinement_resolution;
-      auto local = std::make_shared<const CorrelationEstimator>(
-          rasterize_polygon_map(polygons, options.refinement_resolution), fine);
-      refined = std::make_unique<SectorCorrelationEstimator>(sectors, local, options.refinement);
-    }
-    const SectorMap& sm = sectors->sectors();
-    Eigen::Vector2d lo = polygons.boundary.front(), hi = lo;
-    for (const auto& p : polygons.boundary) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    int ambiguous_sectors = 0;
-    for (const Sector& s : sm.sectors) ambiguous_sectors += label_ambiguous(s) ? 1 : 0;
-    report.sectors_per_map.push_back(static_cast<int>(sm.sectors.size()));
-    report.ambiguous_sectors_per_map.push_back(ambiguous_sectors);
-
+    const MapEstimators estimators = make_estimators(maps[m].polygons, options);
+    const SearchWindow whole_map = whole_map_window(maps[m].polygons);
+    count_sectors(estimators.sectors->sectors(), report);
     for (int t = 0; t < options.trials; ++t) {
-      Rng rng(mix(mix(options.seed, m), static_cast<std::uint64_t>(t)));
-      Pose2 truth;
-      try {
-        truth = sample_polygon_pose(polygons, options.clearance_m, rng);
-      } catch (const Error& e) {
-        throw Error(maps[m].name + ": " + e.what());
-      }
-      Observation obs;
-      obs.scan = polygon_scan(polygons, truth, options.beams, options.max_range);
-      add_range_noise(*obs.scan, options.sigma_m, rng.next());
-      const int true_sector = sm.sector_at({truth.x, truth.y});
-      const bool ambiguous_label =
-          true_sector >= 0 && label_ambiguous(sm.sectors[static_cast<std::size_t>(true_sector)]);
-      // No prior: the correlation searches the whole map; the sector estimators ignore the
-      // window (it only sets on_window_edge).
-      SearchWindow window;
-      if (correlation) {
-        window = correlation->global_window(obs);
-      } else {  // the whole map; "not localized" answers sit at its centre
-        const Eigen::Vector2d c = 0.5 * (lo + hi);
-        window.center = {c.x(), c.y(), 0.0};
-        window.half_xy = 0.5 * (hi - lo).maxCoeff();
-        window.half_theta = std::numbers::pi;
-      }
-      for (std::size_t k = 0; k < ne; ++k) {
-        const EstimatorKind kind = options.estimators[k];
-        Estimate e;
-        int found_sector = -1;
-        if (is_sector_estimator(kind)) {
-          SectorEstimate se = kind == EstimatorKind::Sectors ? sectors->locate(obs, window)
-                                                             : refined->locate(obs, window);
-          e = std::move(se.estimate);
-          found_sector = se.fix.found ? se.fix.sector : -1;
-        } else {
-          e = correlation->estimate(obs, window);
-          found_sector = sm.sector_at({e.pose.x, e.pose.y});
-        }
-        const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
-        const double dt = std::abs(normalize_angle(e.pose.theta - truth.theta));
-        // "Not localized" answers sit at the window's centre: never a success, wherever that is.
-        const bool success = dp <= options.success_xy && dt <= options.success_theta &&
-                             e.verdict != Verdict::NotLocalized;
-        pos_err[k].push_back(dp);
-        head_err[k].push_back(rad2deg(dt));
-        ms[k].push_back(e.stats.elapsed_ms);
-        if (success) good_pos[k].push_back(dp), good_head[k].push_back(rad2deg(dt));
-        report.records.push_back({maps[m].name, t, k, truth, true_sector, found_sector,
-                                  ambiguous_label, success, dp, rad2deg(dt), std::move(e)});
-      }
+      const SectorTrial trial = draw_trial(maps[m], m, t, options, estimators, whole_map);
+      score_trial(trial, maps[m].name, t, estimators, options, tallies, report);
       if (progress) progress(++done, total);
     }
   }
-
   report.trials = total;
-  for (std::size_t k = 0; k < ne; ++k) {
-    SectorEvalResult r;
-    r.estimator = options.estimators[k];
-    r.trials = total;
-    for (const SectorTrialRecord& rec : report.records) {
-      if (rec.estimator != k) continue;
-      const Verdict v = rec.estimate.verdict;
-      r.successes += rec.success ? 1 : 0;
-      r.sector_identified += rec.true_sector >= 0 && rec.found_sector == rec.true_sector ? 1 : 0;
-      r.localized += v == Verdict::Localized ? 1 : 0;
-      r.ambiguous += v == Verdict::Ambiguous ? 1 : 0;
-      r.not_localized += v == Verdict::NotLocalized ? 1 : 0;
-      r.false_fixes += !rec.success && v == Verdict::Localized ? 1 : 0;
-      if (rec.ambiguous_label) {
-        ++r.ambiguous_label_trials;
-        r.ambiguity_detected += v == Verdict::Ambiguous ? 1 : 0;
-        r.ambiguity_answered_wrongly += !rec.success && v == Verdict::Localized ? 1 : 0;
-      }
-    }
-    r.success_rate = static_cast<double>(r.successes) / total;
-    r.sector_identification_rate = static_cast<double>(r.sector_identified) / total;
-    for (double v : pos_err[k]) r.mean_position_error_m += v / total;
-    for (double v : head_err[k]) r.mean_heading_error_deg += v / total;
-    r.median_position_error_m = median(good_pos[k]);
-    r.median_heading_error_deg = median(good_head[k]);
-    r.median_ms = median(ms[k]);
-    const int answered = r.ambiguity_detected + r.ambiguity_answered_wrongly;
-    r.ambiguity_detection_rate = answered > 0 ? static_cast<double>(r.ambiguity_detected) / answered
-                                              : std::numeric_limits<double>::quiet_NaN();
-    report.results.push_back(r);
+  for (std::size_t k = 0; k < tallies.size(); ++k) {
+    report.results.push_back(summarize(options, k, total, tallies[k], report.records));
   }
   return report;
 }

@@ -213,22 +213,24 @@ void score_trial(const Trial& trial, const std::string& map_name, int t,
                  EvalReport& report) {
   const Pose2& truth = trial.truth;
   for (std::size_t c = 0; c < tallies.size(); ++c) {
-    Estimate e;
+    Estimate estimate;
     if (trial.all_rejected) {  // nothing to localize with: a failure at the prior, no confidence
-      e.pose = e.lattice_pose = trial.window.center;
+      estimate.pose = estimate.lattice_pose = trial.window.center;
     } else {
-      e = estimators[c]->estimate(trial.observation, trial.window);
+      estimate = estimators[c]->estimate(trial.observation, trial.window);
     }
-    const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
-    const double dt = std::abs(normalize_angle(e.pose.theta - truth.theta));
+    const double position_error = std::hypot(estimate.pose.x - truth.x, estimate.pose.y - truth.y);
+    const double heading_error = std::abs(normalize_angle(estimate.pose.theta - truth.theta));
     ConfigurationTally& tally = tallies[c];
-    tally.position_errors.push_back(dp);
-    tally.heading_errors.push_back(rad2deg(dt));
-    tally.ms.push_back(e.stats.elapsed_ms);
-    const bool success = dp <= options.success_xy && dt <= options.success_theta;
+    tally.position_errors.push_back(position_error);
+    tally.heading_errors.push_back(rad2deg(heading_error));
+    tally.ms.push_back(estimate.stats.elapsed_ms);
+    const bool success =
+        position_error <= options.success_xy && heading_error <= options.success_theta;
     if (success) ++tally.successes;
-    report.records.push_back({map_name, t, c, success, trial.wrong_prior, trial.furniture, dp,
-                              rad2deg(dt), e, trial.rejected_sonars});
+    report.records.push_back({map_name, t, c, success, trial.wrong_prior, trial.furniture,
+                              position_error, rad2deg(heading_error), estimate,
+                              trial.rejected_sonars});
   }
 }
 
