@@ -43,14 +43,14 @@ struct EvalArgs {
 };
 
 /// One line per trial and configuration: what calibration studies need.
-void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& o) {
+void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& options) {
   std::ofstream out(path);
   if (!out) throw Error("--trials-out: cannot write " + path);
   out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
          "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
          "std_theta,on_window_edge,agreement,rejected_sonars,estimator\n";
   for (const TrialRecord& r : report.records) {
-    const EvalConfiguration& c = o.configurations[r.configuration];
+    const EvalConfiguration& c = options.configurations[r.configuration];
     const Estimate& e = r.estimate;
     out << r.map << ',' << r.trial << ',' << to_string(c.local) << ',' << to_string(c.global) << ','
         << r.success << ',' << r.wrong_prior << ',' << r.furniture << ',' << r.position_error_m
@@ -81,49 +81,67 @@ std::string map_file(const std::string& name) {
 }
 
 /// The sector protocol: polygon maps, 360-degree scans, no prior.
-void run_sectors(const EvalArgs& a, const std::vector<std::string>& files) {
-  if (a.noisy || a.echo_filter) {
+void run_sectors(const EvalArgs& args, const std::vector<std::string>& files) {
+  if (args.noisy || args.echo_filter) {
     throw Error(
         "--noisy and --echo-filter belong to seed 001's sonar protocol, not to the sector "
         "protocol (polygon maps, 360 degree scans)");
   }
-  SectorEvalArgs s;
-  s.maps = files;
-  s.json = a.json;
-  s.quiet = a.quiet;
-  s.trials_out = a.trials_out;
-  SectorEvalOptions& o = s.options;
-  o.trials = a.trials;
-  o.seed = a.seed;
-  o.beams = a.laser.beams;
-  o.max_range = a.laser.max_range;
-  o.sigma_m = a.laser.sigma_m;
-  a.search.apply(o.correlation);
-  o.correlation.resolution = a.step_xy;
-  if (!a.estimators.empty()) {
-    o.estimators.clear();
-    for (const auto& name : split(a.estimators)) o.estimators.push_back(parse_estimator_kind(name));
+  SectorEvalArgs sector_args;
+  sector_args.maps = files;
+  sector_args.json = args.json;
+  sector_args.quiet = args.quiet;
+  sector_args.trials_out = args.trials_out;
+  SectorEvalOptions& options = sector_args.options;
+  options.trials = args.trials;
+  options.seed = args.seed;
+  options.beams = args.laser.beams;
+  options.max_range = args.laser.max_range;
+  options.sigma_m = args.laser.sigma_m;
+  args.search.apply(options.correlation);
+  options.correlation.resolution = args.step_xy;
+  if (!args.estimators.empty()) {
+    options.estimators.clear();
+    for (const auto& name : split(args.estimators)) {
+      options.estimators.push_back(parse_estimator_kind(name));
+    }
   }
-  run_sector_eval(s);
+  run_sector_eval(sector_args);
 }
 
-void run(const EvalArgs& a) {
-  if (!(a.step_xy > 0.0) || !std::isfinite(a.step_xy)) {
-    throw Error("--step-xy must be a positive cell size in metres, got " +
-                std::to_string(a.step_xy));
+/// Throws unless --step-xy is a positive cell size.
+void check_step(double step_xy) {
+  if (!(step_xy > 0.0) || !std::isfinite(step_xy)) {
+    throw Error("--step-xy must be a positive cell size in metres, got " + std::to_string(step_xy));
   }
-  // Polygon maps or a sector estimator: the sector protocol.
+}
+
+/// True when --estimators names a sector estimator (they need the sector protocol).
+bool names_a_sector_estimator(const std::string& estimators) {
   bool sectors = false;
-  for (const auto& name : split(a.estimators))
+  for (const auto& name : split(estimators)) {
     sectors |= is_sector_estimator(parse_estimator_kind(name));
+  }
+  return sectors;
+}
+
+/// The files of --maps (with sector estimators and no --maps, the bundled polygon maps);
+/// throws when there is none or one does not exist.
+std::vector<std::string> map_files(const EvalArgs& args, bool sector_estimators) {
   std::vector<std::string> files;
-  for (const auto& name : split(sectors && !a.maps_given ? kPolygonMaps : a.maps)) {
+  for (const auto& name : split(sector_estimators && !args.maps_given ? kPolygonMaps : args.maps)) {
     files.push_back(map_file(name));
   }
   if (files.empty()) throw Error("--maps names no map");
   for (const auto& f : files) {
     if (!std::filesystem::exists(f)) throw Error("--maps: " + f + ": no such file");
   }
+  return files;
+}
+
+/// True when `files` are polygon maps (the sector protocol), false when they are grid maps;
+/// throws when they mix the two, or when sector estimators get grid maps.
+bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators) {
   const auto polygon = [](const std::string& f) {
     return !is_octomap_path(f) && is_polygon_map_file(f);
   };
@@ -133,113 +151,124 @@ void run(const EvalArgs& a) {
     throw Error(
         "--maps mixes polygon maps with grid maps: the sector protocol needs polygon maps only");
   }
-  if (sectors && polygons == 0) {
+  if (sector_estimators && polygons == 0) {
     throw Error(
         "the sectors estimators need polygon maps (--maps polygons/office or a polygon YAML; "
         "README, Polygon maps)");
   }
-  if (polygons > 0) return run_sectors(a, files);
+  return polygons > 0;
+}
 
-  EvalOptions o;
-  o.trials = a.trials;
-  o.seed = a.seed;
-  a.search.apply(o.search);
-  o.search.resolution = o.window.step_xy = a.step_xy;
-  if (a.noise == "none") {
-    o.noise = SonarSimOptions{};
-  } else if (a.noise != "realistic") {
-    throw Error("--noise must be realistic or none, not '" + a.noise + "'");
+/// Seed 001's protocol options from the command line.
+EvalOptions eval_options(const EvalArgs& args) {
+  EvalOptions options;
+  options.trials = args.trials;
+  options.seed = args.seed;
+  args.search.apply(options.search);
+  options.search.resolution = options.window.step_xy = args.step_xy;
+  if (args.noise == "none") {
+    options.noise = SonarSimOptions{};
+  } else if (args.noise != "realistic") {
+    throw Error("--noise must be realistic or none, not '" + args.noise + "'");
   }
-  o.noisy.enabled = a.noisy;
-  o.laser = a.laser;
-  if (!a.estimators.empty()) {
+  options.noisy.enabled = args.noisy;
+  options.laser = args.laser;
+  if (!args.estimators.empty()) {
     // One configuration per estimator, the correlation with seed 001's best models.
-    o.configurations.clear();
-    for (const auto& name : split(a.estimators)) {
-      o.configurations.push_back(
+    options.configurations.clear();
+    for (const auto& name : split(args.estimators)) {
+      options.configurations.push_back(
           {LocalModel::Oriented, GlobalModel::Thinned, parse_estimator_kind(name)});
     }
-    if (o.configurations.empty()) throw Error("--estimators names no estimator");
+    if (options.configurations.empty()) throw Error("--estimators names no estimator");
   }
-  if (a.echo_filter) o.echo_filter = EchoFilterOptions{};
-  std::vector<EvalMap> maps;
-  for (const auto& file : files) maps.push_back({file, load_map(file, a.octomap.slice)});
-  const SonarRing ring = load_sonar_ring(a.ring);
+  if (args.echo_filter) options.echo_filter = EchoFilterOptions{};
+  return options;
+}
 
-  const EvalReport report = run_evaluation(maps, ring, o, [&](int done, int total) {
-    if (a.quiet) return;
-    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, %zu configurations)", done,
-                 total, maps.size(), a.trials, o.configurations.size());
-    if (done == total) std::fprintf(stderr, "\n");
-  });
-
-  if (!a.trials_out.empty()) write_trials(a.trials_out, report, o);
-  // Sonars the echo filter rejected, per trial (each trial's readings serve every configuration).
-  double rejected_per_trial = 0.0;
+/// Sonars the echo filter rejected, per trial (each trial's readings serve every configuration).
+double mean_rejected_sonars(const EvalReport& report) {
+  double rejected = 0.0;
   for (const TrialRecord& r : report.records) {
-    if (r.configuration == 0) rejected_per_trial += r.rejected_sonars;
+    if (r.configuration == 0) rejected += r.rejected_sonars;
   }
-  rejected_per_trial /= report.trials;
-  if (a.json) {
-    nlohmann::json configs = nlohmann::json::array();
-    for (const auto& c : report.configurations) {
-      configs.push_back(
-          {{"estimator", to_string(c.configuration.estimator)},
-           {"local", to_string(c.configuration.local)},
-           {"global", to_string(c.configuration.global)},
-           {"success_rate", c.success_rate},
-           {"successes", c.successes},
-           {"mean_position_error_m", c.mean_position_error_m},
-           {"mean_heading_error_deg", c.mean_heading_error_deg},
-           {"median_ms", c.median_ms},
-           {"sector_identification_rate", nullptr},  // the sector protocol's
-           {"auroc", number_or_null(c.auroc)},
-           {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)}});
-    }
-    nlohmann::json names = nlohmann::json::array();
-    for (const auto& m : maps) names.push_back(m.name);
-    std::cout << nlohmann::json{{"trials", report.trials},
-                                {"maps", names},
-                                {"seed", a.seed},
-                                {"strategy", a.search.strategy},
-                                // The sonar noise; the laser's is laser_noise_m.
-                                {"noise", a.noisy ? "noisy" : a.noise},
-                                {"laser_noise_m", a.laser.enabled ? nlohmann::json(a.laser.sigma_m)
-                                                                  : nlohmann::json(nullptr)},
-                                {"noisy", a.noisy},
-                                {"sensor", a.laser.enabled ? "laser" : "sonar"},
-                                {"echo_filter", a.echo_filter},
-                                {"echo_filter_rejected_per_trial", rejected_per_trial},
-                                {"arc_rule", a.search.arc_rule},
-                                {"arc_depth_cells", a.search.arc_depth},
-                                {"configurations", configs}}
-                     .dump(2)
-              << "\n";
-    return;
+  rejected /= report.trials;
+  return rejected;
+}
+
+/// The report as JSON on stdout.
+void print_json(const EvalArgs& args, const std::vector<EvalMap>& maps, const EvalReport& report,
+                double rejected_per_trial) {
+  nlohmann::json configs = nlohmann::json::array();
+  for (const auto& c : report.configurations) {
+    configs.push_back(
+        {{"estimator", to_string(c.configuration.estimator)},
+         {"local", to_string(c.configuration.local)},
+         {"global", to_string(c.configuration.global)},
+         {"success_rate", c.success_rate},
+         {"successes", c.successes},
+         {"mean_position_error_m", c.mean_position_error_m},
+         {"mean_heading_error_deg", c.mean_heading_error_deg},
+         {"median_ms", c.median_ms},
+         {"sector_identification_rate", nullptr},  // the sector protocol's
+         {"auroc", number_or_null(c.auroc)},
+         {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)}});
   }
+  nlohmann::json names = nlohmann::json::array();
+  for (const auto& m : maps) names.push_back(m.name);
+  std::cout << nlohmann::json{{"trials", report.trials},
+                              {"maps", names},
+                              {"seed", args.seed},
+                              {"strategy", args.search.strategy},
+                              // The sonar noise; the laser's is laser_noise_m.
+                              {"noise", args.noisy ? "noisy" : args.noise},
+                              {"laser_noise_m", args.laser.enabled
+                                                    ? nlohmann::json(args.laser.sigma_m)
+                                                    : nlohmann::json(nullptr)},
+                              {"noisy", args.noisy},
+                              {"sensor", args.laser.enabled ? "laser" : "sonar"},
+                              {"echo_filter", args.echo_filter},
+                              {"echo_filter_rejected_per_trial", rejected_per_trial},
+                              {"arc_rule", args.search.arc_rule},
+                              {"arc_depth_cells", args.search.arc_depth},
+                              {"configurations", configs}}
+                   .dump(2)
+            << "\n";
+}
+
+/// The table's title lines: protocol, trials, search, noise, echo filter (and the laser).
+void print_table_title(const EvalArgs& args, const EvalOptions& options, const SonarRing& ring,
+                       std::size_t maps, const EvalReport& report, double rejected_per_trial) {
   char filter[96] = "echo filter off";
-  if (a.echo_filter) {
+  if (args.echo_filter) {
     std::snprintf(filter, sizeof filter, "echo filter on (%d firings, %.2f of %zu sonars rejected)",
-                  o.echo_firings, rejected_per_trial, ring.sonars.size());
+                  options.echo_firings, rejected_per_trial, ring.sonars.size());
   }
   std::printf(
       "seed 001 protocol%s: %d trials (%zu maps), seed %llu, %s search, %s noise, %s arcs of "
       "depth %.2g cells, %s\n",
-      a.noisy ? " (noisy: harsh noise, wrong priors, furniture)" : "", report.trials, maps.size(),
-      static_cast<unsigned long long>(a.seed), a.search.strategy.c_str(),
-      a.noisy ? "harsh" : a.noise.c_str(), a.search.arc_rule.c_str(), a.search.arc_depth, filter);
-  if (a.laser.enabled) {
-    std::printf("laser: %d beams, %.1f m max range, %.3f m noise\n", a.laser.beams,
-                a.laser.max_range, a.laser.sigma_m);
+      args.noisy ? " (noisy: harsh noise, wrong priors, furniture)" : "", report.trials, maps,
+      static_cast<unsigned long long>(args.seed), args.search.strategy.c_str(),
+      args.noisy ? "harsh" : args.noise.c_str(), args.search.arc_rule.c_str(),
+      args.search.arc_depth, filter);
+  if (args.laser.enabled) {
+    std::printf("laser: %d beams, %.1f m max range, %.3f m noise\n", args.laser.beams,
+                args.laser.max_range, args.laser.sigma_m);
   }
+}
+
+/// `v` times `scale` as a table cell: "-" for NaN, a percentage when `scale` > 1.
+std::string percent_or_dash(double v, double scale) {
+  char buf[32];
+  if (std::isnan(v)) return std::string("-");
+  std::snprintf(buf, sizeof buf, "%.*f", scale > 1.0 ? 1 : 3, v * scale);
+  return std::string(buf) + (scale > 1.0 ? "%" : "");
+}
+
+/// One table row per configuration, under the column header, and the footnote.
+void print_table_rows(const EvalReport& report) {
   std::printf("%-15s %-9s %-8s %9s %14s %16s %10s %7s %9s\n", "estimator", "local", "global",
               "success", "mean pos err", "mean head err", "median", "AUROC", "flagged");
-  auto percent_or_dash = [](double v, double scale) {
-    char buf[32];
-    if (std::isnan(v)) return std::string("-");
-    std::snprintf(buf, sizeof buf, "%.*f", scale > 1.0 ? 1 : 3, v * scale);
-    return std::string(buf) + (scale > 1.0 ? "%" : "");
-  };
   for (const auto& c : report.configurations) {
     const bool models = c.configuration.estimator != EstimatorKind::Icp;
     std::printf("%-15s %-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s\n",
@@ -255,52 +284,78 @@ void run(const EvalArgs& a) {
       "below the confidence that keeps 95%% of successes.\n");
 }
 
+void run(const EvalArgs& args) {
+  check_step(args.step_xy);
+  // Polygon maps or a sector estimator: the sector protocol.
+  const bool sector_estimators = names_a_sector_estimator(args.estimators);
+  const std::vector<std::string> files = map_files(args, sector_estimators);
+  if (polygon_maps(files, sector_estimators)) return run_sectors(args, files);
+
+  const EvalOptions options = eval_options(args);
+  std::vector<EvalMap> maps;
+  for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
+  const SonarRing ring = load_sonar_ring(args.ring);
+  const EvalReport report = run_evaluation(maps, ring, options, [&](int done, int total) {
+    if (args.quiet) return;
+    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, %zu configurations)", done,
+                 total, maps.size(), args.trials, options.configurations.size());
+    if (done == total) std::fprintf(stderr, "\n");
+  });
+
+  if (!args.trials_out.empty()) write_trials(args.trials_out, report, options);
+  const double rejected = mean_rejected_sonars(report);
+  if (args.json) return print_json(args, maps, report, rejected);
+  print_table_title(args, options, ring, maps.size(), report, rejected);
+  print_table_rows(report);
+}
+
 }  // namespace
 
 void add_eval(CLI::App& app) {
-  auto a = std::make_shared<EvalArgs>();
-  a->maps = "room_rect,room_l,room_furnished";
-  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  auto args = std::make_shared<EvalArgs>();
+  args->maps = "room_rect,room_l,room_furnished";
+  args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
-  cmd->add_option("--maps", a->maps,
+  cmd->add_option("--maps", args->maps,
                   "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths; "
                   "polygon maps run the sector protocol (default there: " +
                       std::string(kPolygonMaps) + ")")
       ->capture_default_str()
-      ->each([a](const std::string&) { a->maps_given = true; });
-  a->octomap.add_to(cmd);
-  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--trials", a->trials, "random poses per map")->capture_default_str();
-  cmd->add_option("--seed", a->seed, "seed of poses, priors and noise")->capture_default_str();
-  cmd->add_option("--noise", a->noise, "realistic | none")->capture_default_str();
-  a->search.add_to(cmd);
-  cmd->add_option("--step-xy", a->step_xy,
+      ->each([args](const std::string&) { args->maps_given = true; });
+  args->octomap.add_to(cmd);
+  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--trials", args->trials, "random poses per map")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "seed of poses, priors and noise")->capture_default_str();
+  cmd->add_option("--noise", args->noise, "realistic | none")->capture_default_str();
+  args->search.add_to(cmd);
+  cmd->add_option("--step-xy", args->step_xy,
                   "the correlation search's grid cell and translation step (m; seed 001: 0.1)")
       ->capture_default_str();
-  cmd->add_flag("--json", a->json, "print JSON instead of the table");
-  cmd->add_flag("--quiet", a->quiet, "no progress line");
-  cmd->add_flag("--noisy", a->noisy,
+  cmd->add_flag("--json", args->json, "print JSON instead of the table");
+  cmd->add_flag("--quiet", args->quiet, "no progress line");
+  cmd->add_flag("--noisy", args->noisy,
                 "the calibration protocol: harsh noise (3 cm + 2 %, 5 % dropouts and "
                 "crosstalk, specular beyond 60 deg), 15 % wrong priors, 25 % furniture changes");
-  cmd->add_flag("--echo-filter", a->echo_filter,
+  cmd->add_flag("--echo-filter", args->echo_filter,
                 "fire the ring 3 times per trial and reject sonars whose echoes disagree "
                 "(EERUF-like; a rejected sonar adds nothing to the local grid)");
-  cmd->add_option("--estimators,--estimator", a->estimators,
+  cmd->add_option("--estimators,--estimator", args->estimators,
                   "compare these estimators on the same trials: comma-separated correlation, "
                   "icp, correlation+icp (icp needs --laser), sectors, sectors+correlation (the "
                   "sector protocol: polygon maps, 360 degree scans, no prior); default: the "
                   "correlation over {turned, oriented} x {raw, thinned}, or sectors and "
                   "correlation on polygon maps");
-  cmd->add_flag("--laser", a->laser.enabled,
+  cmd->add_flag("--laser", args->laser.enabled,
                 "observe with a simulated 360 degree laser instead of the sonar ring");
-  cmd->add_option("--laser-beams", a->laser.beams, "laser beams per scan")->capture_default_str();
-  cmd->add_option("--laser-max-range", a->laser.max_range, "laser max range (m)")
+  cmd->add_option("--laser-beams", args->laser.beams, "laser beams per scan")
       ->capture_default_str();
-  cmd->add_option("--laser-noise", a->laser.sigma_m, "laser range noise sigma (m)")
+  cmd->add_option("--laser-max-range", args->laser.max_range, "laser max range (m)")
       ->capture_default_str();
-  cmd->add_option("--trials-out", a->trials_out,
+  cmd->add_option("--laser-noise", args->laser.sigma_m, "laser range noise sigma (m)")
+      ->capture_default_str();
+  cmd->add_option("--trials-out", args->trials_out,
                   "write every trial (errors, scores, confidence, std) to this CSV");
-  cmd->callback([a] { run(*a); });
+  cmd->callback([args] { run(*args); });
 }
 
 }  // namespace gridloc::cli
