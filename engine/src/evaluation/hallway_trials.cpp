@@ -22,41 +22,57 @@ std::string to_string(OutlierKind kind) {
 }
 
 OutlierKind parse_outlier_kind(const std::string& name) {
-  for (OutlierKind k : {OutlierKind::None, OutlierKind::Scattered, OutlierKind::Appearing}) {
-    if (to_string(k) == name) return k;
+  for (OutlierKind kind : {OutlierKind::None, OutlierKind::Scattered, OutlierKind::Appearing}) {
+    if (to_string(kind) == name) return kind;
   }
   throw Error("outliers must be none, scattered or appearing, not '" + name + "'");
 }
 
-HallwayReport run_hallway_trials(const HallwayTrialsOptions& o) {
-  if (o.seeds < 1)
-    throw Error("hallway trials: seeds must be >= 1, got " + std::to_string(o.seeds));
-  const std::vector<WallSegment> walls = seed004_hallway();
+namespace {
+
+/// Seed `seed`'s trial: the hallway scanned at the origin (the reference) and after seed
+/// 004's motion (the current scan, with its outliers), both with seeded noise; ICP from the
+/// origin.
+IcpResult match_hallway_trial(const std::vector<WallSegment>& walls,
+                              const HallwayTrialsOptions& options, std::uint64_t seed) {
   const auto scan_at = [&](const Pose2& pose) {
     return simulate_segment_scan(walls, pose, 720, deg2rad(-180.0), deg2rad(0.5), 8.0);
   };
+  RangeScan reference = scan_at({0, 0, 0});
+  RangeScan current = scan_at(kSeed004Motion);
+  add_range_noise(reference, options.noise_m, 1000 + 2 * seed);
+  add_range_noise(current, options.noise_m, 1001 + 2 * seed);
+  auto points = scan_returns(current);
+  if (options.outliers == OutlierKind::Scattered) {
+    points = scatter_outliers(points, options.share, 3.0, seed);
+  }
+  if (options.outliers == OutlierKind::Appearing) {
+    points = appear_obstacles(points, options.share, seed);
+  }
+  return match_scans(scan_returns(reference), points, Pose2{}, options.icp);
+}
+
+}  // namespace
+
+HallwayReport run_hallway_trials(const HallwayTrialsOptions& options) {
+  if (options.seeds < 1) {
+    throw Error("hallway trials: seeds must be >= 1, got " + std::to_string(options.seeds));
+  }
+  const std::vector<WallSegment> walls = seed004_hallway();
   HallwayReport report;
-  report.seeds = o.seeds;
-  for (int s = 1; s <= o.seeds; ++s) {
-    const auto seed = static_cast<std::uint64_t>(s);
-    RangeScan ref = scan_at({0, 0, 0});
-    RangeScan cur = scan_at(kSeed004Motion);
-    add_range_noise(ref, o.noise_m, 1000 + 2 * seed);
-    add_range_noise(cur, o.noise_m, 1001 + 2 * seed);
-    auto points = scan_returns(cur);
-    if (o.outliers == OutlierKind::Scattered) points = scatter_outliers(points, o.share, 3.0, seed);
-    if (o.outliers == OutlierKind::Appearing) points = appear_obstacles(points, o.share, seed);
-    const IcpResult r = match_scans(scan_returns(ref), points, Pose2{}, o.icp);
-    const double dx = std::abs(r.pose.x - kSeed004Motion.x);
-    const double dy = std::abs(r.pose.y - kSeed004Motion.y);
-    const double dt = rad2deg(std::abs(normalize_angle(r.pose.theta - kSeed004Motion.theta)));
-    report.converged += r.converged ? 1 : 0;
-    if (std::hypot(dx, dy) < o.success_xy && dt < o.success_deg) {
+  report.seeds = options.seeds;
+  for (int s = 1; s <= options.seeds; ++s) {
+    const IcpResult match = match_hallway_trial(walls, options, static_cast<std::uint64_t>(s));
+    const double dx = std::abs(match.pose.x - kSeed004Motion.x);
+    const double dy = std::abs(match.pose.y - kSeed004Motion.y);
+    const double dt = rad2deg(std::abs(normalize_angle(match.pose.theta - kSeed004Motion.theta)));
+    report.converged += match.converged ? 1 : 0;
+    if (std::hypot(dx, dy) < options.success_xy && dt < options.success_deg) {
       ++report.successes;
       report.mean_error_x_m += dx;
       report.mean_error_y_m += dy;
       report.mean_error_deg += dt;
-      report.mean_iterations += r.iterations;
+      report.mean_iterations += match.iterations;
     }
   }
   const double n = std::max(report.successes, 1);
