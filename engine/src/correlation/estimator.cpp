@@ -23,22 +23,22 @@ double level_resolution(double finest, int l) {
 /// distinct_theta, in lattice units (one definition for every strategy, so that they agree
 /// exactly on the second peak).
 Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
-                        const CorrelationOptions& o) {
-  return {p, o.distinct_xy / res,
-          static_cast<int>(std::floor(o.distinct_theta / step_theta + 1e-9))};
+                        const CorrelationOptions& options) {
+  return {p, options.distinct_xy / res,
+          static_cast<int>(std::floor(options.distinct_theta / step_theta + 1e-9))};
 }
 
 /// Distinct local maxima of the scored poses: best first (ties to the lowest index), each
 /// outside the neighbourhood of every one chosen before.
 std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
-                                        double step_theta, const CorrelationOptions& o,
+                                        double step_theta, const CorrelationOptions& options,
                                         std::size_t max_count) {
   std::stable_sort(scored.begin(), scored.end(),
                    [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
   std::vector<LatticePose> peaks;
   for (const auto& c : scored) {
     const bool distinct = std::none_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
-      return neighbourhood(p, res, step_theta, o).contains(c.ix, c.iy, c.it);
+      return neighbourhood(p, res, step_theta, options).contains(c.ix, c.iy, c.it);
     });
     if (distinct) peaks.push_back(c);
     if (peaks.size() == max_count) break;
@@ -141,6 +141,255 @@ double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
   return used == 0 ? 0.0 : static_cast<double>(agree) / static_cast<double>(used);
 }
 
+/// Checks the options on their own; throws gridloc::Error naming the first that is wrong.
+void check(const CorrelationOptions& options) {
+  if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
+    throw Error("correlation options: resolution must be > 0, got " +
+                std::to_string(options.resolution));
+  }
+  if (options.levels < 1 || options.levels > 8) {
+    throw Error("correlation options: levels must be in [1, 8], got " +
+                std::to_string(options.levels));
+  }
+  if (options.keep < 1) throw Error("correlation options: keep must be >= 1");
+  if (options.hypotheses < 1 || options.hypotheses > 100) {
+    throw Error("correlation options: hypotheses must be in [1, 100], got " +
+                std::to_string(options.hypotheses));
+  }
+  if (options.covariance_cells < 0 || options.covariance_cells > 20) {
+    throw Error("correlation options: covariance_cells must be in [0, 20], got " +
+                std::to_string(options.covariance_cells));
+  }
+  validate(options.scan);
+  if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
+    throw Error("correlation options: budget_ms must be finite and >= 0, got " +
+                std::to_string(options.budget_ms));
+  }
+  // Options only branch and bound can honour are errors elsewhere, not silently ignored.
+  if (options.strategy != SearchStrategy::BranchAndBound &&
+      (options.budget_ms > 0.0 || options.heading_intervals)) {
+    throw Error(std::string("correlation options: ") +
+                (options.budget_ms > 0.0 ? "budget_ms" : "heading_intervals") +
+                " needs the branch-and-bound strategy");
+  }
+  if (options.threads < 1 || options.threads > 256) {
+    throw Error("correlation options: threads must be in [1, 256], got " +
+                std::to_string(options.threads));
+  }
+}
+
+/// What the global grids' padding covers (m): options.reach_m or the ring's reach, whichever
+/// is larger; throws gridloc::Error for a bad reach_m or a reach of a million cells or more.
+double padding_reach(const CorrelationOptions& options, const SonarRing& ring) {
+  if (!(options.reach_m >= 0.0) || !std::isfinite(options.reach_m)) {
+    throw Error("correlation options: reach_m must be >= 0, got " +
+                std::to_string(options.reach_m));
+  }
+  const double reach = std::max(options.reach_m, ring.sonars.empty() ? 0.0 : ring.reach());
+  if (reach / options.resolution > 1e6) {  // the padding alone would be 2 million cells wide
+    std::ostringstream m;
+    m << "correlation options: reach " << reach << " m is more than a million cells of "
+      << options.resolution << " m; a sensor reaches metres, not kilometres";
+    throw Error(m.str());
+  }
+  return reach;
+}
+
+/// Checks that the observation is sonar readings for `ring` or a scan within `reach`, not
+/// both; throws gridloc::Error naming what is wrong.
+void check_observation(const Observation& observation, const SonarRing& ring, double reach) {
+  if (observation.scan) {
+    if (!observation.ranges.empty()) {
+      throw Error("observation: give sonar ranges or a scan, not both");
+    }
+    if (!observation.rejected.empty()) {
+      throw Error("observation: a rejection mask is for sonar readings, not for a scan");
+    }
+    validate(*observation.scan);
+    if (observation.scan->max_range > reach + 1e-9) {
+      std::ostringstream m;
+      m << "scan: max range " << observation.scan->max_range << " m exceeds the estimator's reach "
+        << reach << " m (set CorrelationOptions::reach_m)";
+      throw Error(m.str());
+    }
+  } else {
+    if (ring.sonars.empty())
+      throw Error("observation: this estimator has no sonar ring; give a scan");
+    validate_readings(ring, observation.ranges, observation.rejected);
+  }
+}
+
+/// A scan's points under a point model, made once and rotated per heading; nullopt for
+/// sonar readings and for ray-model scans.
+std::optional<ScanPoints> rigid_points(const Observation& observation,
+                                       const ScanModelOptions& scan) {
+  if (observation.scan && scan.model != ScanModel::Rays) {
+    return scan_points(*observation.scan, scan);
+  }
+  return std::nullopt;
+}
+
+/// Milliseconds since `start`.
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+/// World pose of lattice coordinates (fractions allowed): the cell's centre, the heading.
+Pose2 lattice_to_world(const GridGeometry& geometry, const Lattice& lattice, double res, double ix,
+                       double iy, double it) {
+  return geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
+}
+
+/// One estimate()'s search of its lattice, shared by the steps after it: the levels searched,
+/// the branch-and-bound heading grids (made by the first search, reused by the next
+/// hypotheses, the refinement and the covariance) and options, and what the searches found.
+struct WindowSearch {
+  WindowSearch(const Lattice& searched, const std::vector<SearchLevel>& search_levels,
+               const BoundPyramid& bound_pyramid)
+      : lattice(searched), levels(search_levels), pyramid(bound_pyramid) {}
+  const SearchLevel& finest() const { return levels.front(); }
+
+  const Lattice& lattice;
+  const std::vector<SearchLevel>& levels;
+  const BoundPyramid& pyramid;        ///< of the finest level's grid (branch and bound)
+  std::optional<HeadingGrids> grids;  ///< branch and bound only
+  BranchAndBoundOptions bnb;
+  SearchResult result;  ///< of the first search, with the counters of all
+};
+
+/// The strategy's search for the best lattice pose (ties to the lowest index).
+void search_lattice(WindowSearch& search, const CorrelationOptions& options) {
+  search.bnb.threads = options.threads;
+  search.bnb.budget_ms = options.budget_ms;
+  search.bnb.heading_intervals = options.heading_intervals;
+  switch (options.strategy) {
+    case SearchStrategy::Exhaustive:
+      search.result = search_exhaustive(search.lattice, search.finest());
+      break;
+    case SearchStrategy::Multires:
+      search.result = search_multires(search.lattice, search.levels, options.keep);
+      search.result.proven_optimal = false;
+      search.result.upper_bound = std::numeric_limits<double>::quiet_NaN();
+      break;
+    case SearchStrategy::BranchAndBound:
+      search.grids.emplace(search.lattice, search.finest());
+      search.result =
+          search_branch_and_bound(search.lattice, *search.grids, search.pyramid, search.bnb);
+      break;
+  }
+}
+
+/// Estimate::lattice_pose and Estimate::pose: the winner in the world, refined below a cell
+/// and a heading step (refine()) when options.refine.
+void place_winner(Estimate& e, const WindowSearch& search, const GridGeometry& geometry,
+                  const CorrelationOptions& options) {
+  const double res = options.resolution;
+  const LatticePose& best = search.result.best;
+  e.lattice_pose = lattice_to_world(geometry, search.lattice, res, best.ix, best.iy, best.it);
+  e.pose = e.lattice_pose;
+  if (options.refine) {
+    // Branch and bound already built the lattice headings' grids: refinement reuses them.
+    std::function<const PlacedLocalGrid*(int)> built;
+    if (search.grids) built = [&](int it) { return &search.grids->placed(it); };
+    const RefinedPose refined = refine(best, search.lattice, search.finest(), 4, built);
+    e.pose = lattice_to_world(geometry, search.lattice, res, refined.ix, refined.iy, refined.it);
+  }
+}
+
+/// Estimate::on_window_edge: `best` lies on an edge of the window as asked (not one where the
+/// map clipped it), so a better pose may lie beyond it.
+bool on_window_edge(const LatticePose& best, const Lattice& lattice, const SearchWindow& window,
+                    const GridGeometry& geometry, double res) {
+  const double span = 2.0 * window.half_xy / res;  // the unclipped window, in cells
+  const Pose2 prior = geometry.to_grid_frame(window.center);
+  const int cx = static_cast<int>(std::floor(prior.x / res));
+  const int cy = static_cast<int>(std::floor(prior.y / res));
+  const int n = static_cast<int>(std::lround(span / 2.0));
+  const bool x_edge = (best.ix == lattice.x0 && lattice.x0 == cx - n) ||
+                      (best.ix == lattice.x1 && lattice.x1 == cx + n);
+  const bool y_edge = (best.iy == lattice.y0 && lattice.y0 == cy - n) ||
+                      (best.iy == lattice.y1 && lattice.y1 == cy + n);
+  const bool all_headings = lattice.headings * window.step_theta >= 2.0 * std::numbers::pi;
+  const bool t_edge = !all_headings && (best.it == 0 || best.it == lattice.headings - 1);
+  return x_edge || y_edge || t_edge;
+}
+
+/// The best pose of `seen` outside every zone of `exclude` (ties to the lowest index), if any.
+std::optional<LatticePose> best_outside(const std::vector<LatticePose>& seen,
+                                        const std::vector<Exclusion>& exclude) {
+  std::optional<LatticePose> best;
+  for (const auto& p : seen) {
+    const bool excluded = std::any_of(exclude.begin(), exclude.end(), [&](const Exclusion& z) {
+      return z.contains(p.ix, p.iy, p.it);
+    });
+    if (!excluded && (!best || better(p, *best))) best = p;
+  }
+  return best;
+}
+
+/// The hypotheses of branch and bound, which scores few poses: each next distinct pose is
+/// found exactly, by a search that leaves out the neighbourhoods of those found, starting from
+/// the best pose outside them that an earlier search scored (the greedy order of
+/// distinct_peaks). Later searches get what is left of options.budget_ms since `start`.
+std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const CorrelationOptions& options,
+                                          std::chrono::steady_clock::time_point start) {
+  const auto wanted = static_cast<std::size_t>(options.hypotheses);
+  BranchAndBoundOptions& bnb = search.bnb;
+  SearchResult& result = search.result;
+  std::vector<LatticePose> peaks{result.best};
+  std::vector<LatticePose> seen = result.scored;
+  while (peaks.size() < wanted) {
+    bnb.exclude.push_back(
+        neighbourhood(peaks.back(), options.resolution, search.lattice.step_theta, options));
+    bnb.incumbent = best_outside(seen, bnb.exclude);
+    SearchResult next;
+    next.best = bnb.incumbent.value_or(LatticePose{});
+    if (options.budget_ms > 0.0) bnb.budget_ms = options.budget_ms - elapsed_ms(start);
+    if (options.second_peak && (options.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
+      next = search_branch_and_bound(search.lattice, *search.grids, search.pyramid, bnb);
+      seen.insert(seen.end(), next.scored.begin(), next.scored.end());
+      result.poses_scored += next.poses_scored;
+      result.cells_scored += next.cells_scored;
+    }
+    if (!bnb.incumbent && next.poses_scored == 0) break;  // every other pose is excluded
+    peaks.push_back(next.best);
+  }
+  return peaks;
+}
+
+/// Estimate::alternatives as lattice poses: up to options.hypotheses distinct ones, the
+/// winner first.
+std::vector<LatticePose> hypotheses(WindowSearch& search, const CorrelationOptions& options,
+                                    std::chrono::steady_clock::time_point start) {
+  if (options.strategy == SearchStrategy::BranchAndBound) {
+    return exact_hypotheses(search, options, start);
+  }
+  return distinct_peaks(search.result.scored, options.resolution, search.lattice.step_theta,
+                        options, static_cast<std::size_t>(options.hypotheses));
+}
+
+/// peak_covariance() of the winner within `cells`, reusing branch and bound's heading grids.
+Eigen::Matrix3d winner_covariance(const WindowSearch& search, int cells, double yaw) {
+  std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
+    return search.grids ? search.grids->placed(it)
+                        : place_heading(search.finest(), search.lattice.theta(it));
+  };
+  return peak_covariance(search.result.best, search.lattice, *search.finest().global, placed_at,
+                         cells, yaw);
+}
+
+/// Estimate::stats of the searches, timed since `start`.
+void fill_stats(Estimate& e, const SearchResult& result, int levels,
+                std::chrono::steady_clock::time_point start) {
+  e.stats.poses_scored = result.poses_scored;
+  e.stats.cells_scored = result.cells_scored;
+  e.stats.levels = levels;
+  e.stats.proven_optimal = result.proven_optimal;
+  e.stats.upper_bound = result.upper_bound;
+  e.stats.elapsed_ms = elapsed_ms(start);
+}
+
 }  // namespace
 
 std::string to_string(Verdict verdict) {
@@ -190,52 +439,9 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
                                            CorrelationOptions options)
     : map_(std::move(map)), ring_(std::move(ring)), options_(options) {
   if (!ring_.sonars.empty() || options_.reach_m <= 0.0) validate(ring_);
-  if (!(options_.resolution > 0.0) || !std::isfinite(options_.resolution)) {
-    throw Error("correlation options: resolution must be > 0, got " +
-                std::to_string(options_.resolution));
-  }
-  if (options_.levels < 1 || options_.levels > 8) {
-    throw Error("correlation options: levels must be in [1, 8], got " +
-                std::to_string(options_.levels));
-  }
-  if (options_.keep < 1) throw Error("correlation options: keep must be >= 1");
-  if (options_.hypotheses < 1 || options_.hypotheses > 100) {
-    throw Error("correlation options: hypotheses must be in [1, 100], got " +
-                std::to_string(options_.hypotheses));
-  }
-  if (options_.covariance_cells < 0 || options_.covariance_cells > 20) {
-    throw Error("correlation options: covariance_cells must be in [0, 20], got " +
-                std::to_string(options_.covariance_cells));
-  }
-  validate(options_.scan);
-  if (!(options_.budget_ms >= 0.0) || !std::isfinite(options_.budget_ms)) {
-    throw Error("correlation options: budget_ms must be finite and >= 0, got " +
-                std::to_string(options_.budget_ms));
-  }
-  // Options only branch and bound can honour are errors elsewhere, not silently ignored.
-  if (options_.strategy != SearchStrategy::BranchAndBound &&
-      (options_.budget_ms > 0.0 || options_.heading_intervals)) {
-    throw Error(std::string("correlation options: ") +
-                (options_.budget_ms > 0.0 ? "budget_ms" : "heading_intervals") +
-                " needs the branch-and-bound strategy");
-  }
-  if (options_.threads < 1 || options_.threads > 256) {
-    throw Error("correlation options: threads must be in [1, 256], got " +
-                std::to_string(options_.threads));
-  }
-
+  check(options_);
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
-  if (!(options_.reach_m >= 0.0) || !std::isfinite(options_.reach_m)) {
-    throw Error("correlation options: reach_m must be >= 0, got " +
-                std::to_string(options_.reach_m));
-  }
-  reach_ = std::max(options_.reach_m, ring_.sonars.empty() ? 0.0 : ring_.reach());
-  if (reach_ / options_.resolution > 1e6) {  // the padding alone would be 2 million cells wide
-    std::ostringstream m;
-    m << "correlation options: reach " << reach_ << " m is more than a million cells of "
-      << options_.resolution << " m; a sensor reaches metres, not kilometres";
-    throw Error(m.str());
-  }
+  reach_ = padding_reach(options_, ring_);
   // Only the multiresolution search reads the coarser levels.
   const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < built; ++l) {
@@ -259,25 +465,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, CorrelationOptions 
 
 Lattice CorrelationEstimator::lattice(const Observation& observation,
                                       const SearchWindow& window) const {
-  if (observation.scan) {
-    if (!observation.ranges.empty()) {
-      throw Error("observation: give sonar ranges or a scan, not both");
-    }
-    if (!observation.rejected.empty()) {
-      throw Error("observation: a rejection mask is for sonar readings, not for a scan");
-    }
-    validate(*observation.scan);
-    if (observation.scan->max_range > reach_ + 1e-9) {
-      std::ostringstream m;
-      m << "scan: max range " << observation.scan->max_range << " m exceeds the estimator's reach "
-        << reach_ << " m (set CorrelationOptions::reach_m)";
-      throw Error(m.str());
-    }
-  } else {
-    if (ring_.sonars.empty())
-      throw Error("observation: this estimator has no sonar ring; give a scan");
-    validate_readings(ring_, observation.ranges, observation.rejected);
-  }
+  check_observation(observation, ring_, reach_);
   validate(window);
   const double res = options_.resolution;
   if (std::abs(window.step_xy - res) > 1e-9) {
@@ -329,153 +517,64 @@ Lattice CorrelationEstimator::lattice(const Observation& observation,
 Estimate CorrelationEstimator::estimate(const Observation& observation,
                                         const SearchWindow& window) const {
   const auto start = std::chrono::steady_clock::now();
-  const Lattice lattice = this->lattice(observation, window);
-  const double res = options_.resolution;
-  // A scan under a point model: its points once, rotated per heading.
-  std::optional<ScanPoints> points;
-  if (observation.scan && options_.scan.model != ScanModel::Rays) {
-    points = scan_points(*observation.scan, options_.scan);
-  }
-  const ScanPoints* points_ptr = points ? &*points : nullptr;
-
-  std::vector<SearchLevel> levels;
+  const Lattice lattice = this->lattice(observation, window);  // checks both first
+  const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
   const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
-  for (int l = 0; l < level_count; ++l) {
+  const std::vector<SearchLevel> levels =
+      search_levels(observation, points ? &*points : nullptr, level_count);
+  WindowSearch search(lattice, levels, pyramid_);
+  search_lattice(search, options_);
+  const LatticePose& best = search.result.best;
+
+  Estimate e;
+  place_winner(e, search, map_.geometry, options_);
+  e.score = best.score;
+  e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
+                                 : reading_agreement(map_, ring_, observation.ranges,
+                                                     observation.rejected, e.pose);
+  e.on_window_edge = on_window_edge(best, lattice, window, map_.geometry, options_.resolution);
+  // The winning heading's local grid: the most any pose could score.
+  const double mass =
+      levels.front().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();
+  e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
+  const std::vector<LatticePose> peaks = hypotheses(search, options_, start);
+  e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
+  for (const auto& p : peaks) {
+    e.alternatives.push_back(
+        {lattice_to_world(map_.geometry, lattice, options_.resolution, p.ix, p.iy, p.it), p.score});
+  }
+  if (options_.covariance_cells > 0) {
+    e.covariance = winner_covariance(search, options_.covariance_cells, map_.geometry.yaw);
+  }
+  judge(e, peaks.size() > 1, options_.verdict);
+  fill_stats(e, search.result, level_count, start);
+  return e;
+}
+
+std::vector<SearchLevel> CorrelationEstimator::search_levels(const Observation& observation,
+                                                             const ScanPoints* points,
+                                                             int count) const {
+  std::vector<SearchLevel> levels;
+  for (int l = 0; l < count; ++l) {
     levels.push_back(
         {&levels_[static_cast<std::size_t>(l)],
-         [&, level_res = level_resolution(res, l)](double theta, const Eigen::Vector2d& centre) {
-           return local_grid(observation, points_ptr, theta, level_res, centre);
+         [this, &observation, points, level_res = level_resolution(options_.resolution, l)](
+             double theta, const Eigen::Vector2d& centre) {
+           return local_grid(observation, points, theta, level_res, centre);
          },
          options_.threads});
   }
   // Rigid points: branch and bound places them directly and can bound heading intervals.
-  if (points) levels.front().points = points_ptr;
-  SearchResult r;
-  std::optional<HeadingGrids> grids;  // branch and bound: shared by its two searches
-  BranchAndBoundOptions bnb;
-  bnb.threads = options_.threads;
-  bnb.budget_ms = options_.budget_ms;
-  bnb.heading_intervals = options_.heading_intervals;
-  switch (options_.strategy) {
-    case SearchStrategy::Exhaustive:
-      r = search_exhaustive(lattice, levels.front());
-      break;
-    case SearchStrategy::Multires:
-      r = search_multires(lattice, levels, options_.keep);
-      r.proven_optimal = false;
-      r.upper_bound = std::numeric_limits<double>::quiet_NaN();
-      break;
-    case SearchStrategy::BranchAndBound:
-      grids.emplace(lattice, levels.front());
-      r = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
-      break;
-  }
-  auto to_world = [&](double ix, double iy, double it) {
-    return map_.geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
-  };
-
-  Estimate e;
-  e.lattice_pose = to_world(r.best.ix, r.best.iy, r.best.it);
-  e.pose = e.lattice_pose;
-  if (options_.refine) {
-    // Branch and bound already built the lattice headings' grids: refinement reuses them.
-    std::function<const PlacedLocalGrid*(int)> built;
-    if (grids) built = [&](int it) { return &grids->placed(it); };
-    const RefinedPose refined = refine(r.best, lattice, levels.front(), 4, built);
-    e.pose = to_world(refined.ix, refined.iy, refined.it);
-  }
-  e.score = r.best.score;
-  e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
-                                 : reading_agreement(map_, ring_, observation.ranges,
-                                                     observation.rejected, e.pose);
-  {
-    const double span = 2.0 * window.half_xy / res;  // the unclipped window, in cells
-    const Pose2 prior = map_.geometry.to_grid_frame(window.center);
-    const int cx = static_cast<int>(std::floor(prior.x / res));
-    const int cy = static_cast<int>(std::floor(prior.y / res));
-    const int n = static_cast<int>(std::lround(span / 2.0));
-    const bool x_edge = (r.best.ix == lattice.x0 && lattice.x0 == cx - n) ||
-                        (r.best.ix == lattice.x1 && lattice.x1 == cx + n);
-    const bool y_edge = (r.best.iy == lattice.y0 && lattice.y0 == cy - n) ||
-                        (r.best.iy == lattice.y1 && lattice.y1 == cy + n);
-    const bool all_headings = lattice.headings * window.step_theta >= 2.0 * std::numbers::pi;
-    const bool t_edge = !all_headings && (r.best.it == 0 || r.best.it == lattice.headings - 1);
-    e.on_window_edge = x_edge || y_edge || t_edge;
-  }
-  const double mass =
-      local_grid(observation, points_ptr, lattice.theta(r.best.it), res, Eigen::Vector2d::Zero())
-          .mass();
-  e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
-  std::vector<LatticePose> peaks;
-  const auto wanted = static_cast<std::size_t>(options_.hypotheses);
-  if (options_.strategy == SearchStrategy::BranchAndBound) {
-    // Branch and bound scores few poses: find each next distinct pose exactly, by a search
-    // that leaves out the neighbourhoods of those found, starting from the best pose outside
-    // them that an earlier search scored (the greedy order of distinct_peaks).
-    peaks.push_back(r.best);
-    std::vector<LatticePose> seen = r.scored;
-    while (peaks.size() < wanted) {
-      bnb.exclude.push_back(neighbourhood(peaks.back(), res, window.step_theta, options_));
-      bnb.incumbent.reset();
-      for (const auto& p : seen) {
-        const bool excluded =
-            std::any_of(bnb.exclude.begin(), bnb.exclude.end(),
-                        [&](const Exclusion& z) { return z.contains(p.ix, p.iy, p.it); });
-        if (!excluded && (!bnb.incumbent || better(p, *bnb.incumbent))) bnb.incumbent = p;
-      }
-      SearchResult next;
-      next.best = bnb.incumbent.value_or(LatticePose{});
-      if (options_.budget_ms > 0.0) {  // later searches get what is left of the budget
-        bnb.budget_ms = options_.budget_ms - std::chrono::duration<double, std::milli>(
-                                                 std::chrono::steady_clock::now() - start)
-                                                 .count();
-      }
-      if (options_.second_peak && (options_.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
-        next = search_branch_and_bound(lattice, *grids, pyramid_, bnb);
-        seen.insert(seen.end(), next.scored.begin(), next.scored.end());
-        r.poses_scored += next.poses_scored;
-        r.cells_scored += next.cells_scored;
-      }
-      if (!bnb.incumbent && next.poses_scored == 0) break;  // every other pose is excluded
-      peaks.push_back(next.best);
-    }
-  } else {
-    peaks = distinct_peaks(r.scored, res, window.step_theta, options_, wanted);
-  }
-  e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
-  for (const auto& p : peaks) e.alternatives.push_back({to_world(p.ix, p.iy, p.it), p.score});
-  if (options_.covariance_cells > 0) {
-    std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
-      return grids ? grids->placed(it) : place_heading(levels.front(), lattice.theta(it));
-    };
-    e.covariance = peak_covariance(r.best, lattice, *levels.front().global, placed_at,
-                                   options_.covariance_cells, map_.geometry.yaw);
-  }
-  judge(e, peaks.size() > 1, options_.verdict);
-  e.stats.poses_scored = r.poses_scored;
-  e.stats.cells_scored = r.cells_scored;
-  e.stats.levels = level_count;
-  e.stats.proven_optimal = r.proven_optimal;
-  e.stats.upper_bound = r.upper_bound;
-  e.stats.elapsed_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return e;
+  if (points != nullptr) levels.front().points = points;
+  return levels;
 }
 
 ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
                                                const SearchWindow& window) const {
   const Lattice lattice = this->lattice(observation, window);
   const double res = options_.resolution;
-  std::optional<ScanPoints> points;
-  if (observation.scan && options_.scan.model != ScanModel::Rays) {
-    points = scan_points(*observation.scan, options_.scan);
-  }
-  const ScanPoints* points_ptr = points ? &*points : nullptr;
-  SearchLevel level{&levels_.front(),
-                    [&](double theta, const Eigen::Vector2d& centre) {
-                      return local_grid(observation, points_ptr, theta, res, centre);
-                    },
-                    options_.threads, points_ptr};
+  const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
+  const SearchLevel level = search_levels(observation, points ? &*points : nullptr, 1).front();
   const SearchResult r = search_exhaustive(lattice, level);
   ScoreVolume v;
   v.nx = lattice.x1 - lattice.x0 + 1;
@@ -497,7 +596,7 @@ ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
   v.mass.resize(static_cast<std::size_t>(v.headings));
   for (int it = 0; it < v.headings; ++it) {
     v.mass[static_cast<std::size_t>(it)] =
-        local_grid(observation, points_ptr, lattice.theta(it), res, Eigen::Vector2d::Zero()).mass();
+        level.make_local(lattice.theta(it), Eigen::Vector2d::Zero()).mass();
   }
   return v;
 }

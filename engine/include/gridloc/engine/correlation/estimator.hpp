@@ -132,6 +132,11 @@ class CorrelationEstimator final : public Estimator {
   /// are the scan's points under a point model (nullptr otherwise).
   SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,
                              double resolution, const Eigen::Vector2d& centre) const;
+  /// The first `count` levels' search levels for `observation`: each padded grid with the
+  /// maker of the observation's local grids at its resolution; `points` (may be nullptr) on
+  /// the finest (SearchLevel::points).
+  std::vector<SearchLevel> search_levels(const Observation& observation, const ScanPoints* points,
+                                         int count) const;
 
   OccupancyMap map_;
   SonarRing ring_;
