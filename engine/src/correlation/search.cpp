@@ -175,88 +175,123 @@ __attribute__((target_clones("avx2", "default"))) void point_cells(const double*
   }
 }
 
-}  // namespace
-
-PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global) {
-  const double inv = 1.0 / global.grid.geometry.resolution;
-  const double c = std::cos(theta), s = std::sin(theta);
-  const int w = global.grid.width();
-  // Pass 1, independent per point: the cells.
-  thread_local std::vector<int> xs, ys;
-  xs.resize(points.size());
-  ys.resize(points.size());
-  point_cells(points.x.data(), points.y.data(), points.size(), c, s, inv, xs.data(), ys.data());
-  // Pass 2: merge points per cell, finding a cell's entry through a small open-addressing
-  // table (kept in L1/L2, unlike a table over the grid): a slot whose epoch is this call's
-  // holds a cell offset and its entry. No clearing: each call has a new epoch.
+/// A small open-addressing table from cell offsets to entries (kept in L1/L2, unlike a table
+/// over the grid), one per thread and reused: a slot whose epoch is this call's holds a cell
+/// offset and its entry. No clearing: each call has a new epoch.
+class CellTable {
+ public:
   struct Slot {
     std::uint32_t epoch;
     std::int32_t offset;
     std::uint32_t entry;
   };
-  thread_local std::vector<Slot> table;
-  thread_local std::uint32_t epoch = 0;
-  std::size_t size = 64;
-  while (size < 4 * points.size()) size *= 2;
-  if (table.size() < size || ++epoch == 0) {
-    table.assign(std::max(size, table.size()), Slot{0, 0, 0});
-    epoch = 1;
+
+  /// The thread's table, sized for `points` points, every slot empty for this call.
+  explicit CellTable(std::size_t points) {
+    thread_local std::vector<Slot> table;
+    thread_local std::uint32_t epoch = 0;
+    std::size_t size = 64;
+    while (size < 4 * points) size *= 2;
+    if (table.size() < size || ++epoch == 0) {
+      table.assign(std::max(size, table.size()), Slot{0, 0, 0});
+      epoch = 1;
+    }
+    now_ = epoch;
+    slots_ = table.data();
+    mask_ = size - 1;
+    shift_ = 64 - std::countr_zero(size);
   }
-  const std::uint32_t now = epoch;
-  Slot* const slots = table.data();
-  const std::size_t mask = size - 1;
-  const int shift = 64 - std::countr_zero(size);
-  PlacedLocalGrid p;
-  p.offset.resize(points.size());
-  p.value.resize(points.size());
-  std::int32_t* const offset = p.offset.data();
-  float* const value = p.value.data();
-  std::uint32_t n = 0;  // entries so far
-  // The slot of point k's cell: its entry's, or the empty one where it goes (its epoch
-  // stays old until the caller makes it an entry).
-  auto slot_of = [&](std::size_t k) -> Slot& {
-    const std::int32_t o = ys[k] * w + xs[k];
+
+  /// The slot of cell `offset`: its entry's, or the empty one where it goes (its epoch stays
+  /// old until enter() makes it an entry).
+  Slot& slot_of(std::int32_t offset) {
     // Fibonacci hashing: the top bits of the product spread nearby offsets apart.
     std::size_t h = static_cast<std::size_t>(
-        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(o)) * 0x9E3779B97F4A7C15ull) >>
-        shift);
-    while (slots[h].epoch == now && slots[h].offset != o) h = (h + 1) & mask;
-    Slot& t = slots[h];
-    if (t.epoch != now) t.offset = o;
-    return t;
-  };
-  // A cell holding a beam end is +1; any other the float sum of its free samples in point
-  // order, as the canvas adds them; a sum of 0 is no cell.
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(offset)) * 0x9E3779B97F4A7C15ull) >>
+        shift_);
+    while (slots_[h].epoch == now_ && slots_[h].offset != offset) h = (h + 1) & mask_;
+    Slot& slot = slots_[h];
+    if (slot.epoch != now_) slot.offset = offset;
+    return slot;
+  }
+  /// The slot holds an entry of this call.
+  bool holds(const Slot& slot) const { return slot.epoch == now_; }
+  /// Makes the slot this call's entry `entry`.
+  void enter(Slot& slot, std::uint32_t entry) const {
+    slot.epoch = now_;
+    slot.entry = entry;
+  }
+
+ private:
+  Slot* slots_ = nullptr;
+  std::size_t mask_ = 0;
+  int shift_ = 0;
+  std::uint32_t now_ = 0;
+};
+
+/// Pass 2 of place_points: merges the points' cells (xs, ys from the robot's cell, in a grid
+/// `width` cells wide) into entries of `placed`, sized for every point. A cell holding a beam
+/// end is +1 (an arc cell, first); any other the float sum of its free samples in point
+/// order, as the canvas adds them. Sets arc_count; returns the number of entries.
+std::uint32_t merge_cells(const ScanPoints& points, const int* xs, const int* ys, int width,
+                          PlacedLocalGrid& placed) {
+  CellTable table(points.size());
+  std::int32_t* const offset = placed.offset.data();
+  float* const value = placed.value.data();
+  std::uint32_t n = 0;  // entries so far
   for (std::size_t k = 0; k < points.hit_count; ++k) {
-    Slot& t = slot_of(k);
-    if (t.epoch == now) continue;
-    t.epoch = now;
-    t.entry = n;
-    offset[n] = t.offset;
+    CellTable::Slot& slot = table.slot_of(ys[k] * width + xs[k]);
+    if (table.holds(slot)) continue;
+    table.enter(slot, n);
+    offset[n] = slot.offset;
     value[n++] = 1.0f;
   }
-  p.arc_count = n;
+  placed.arc_count = n;
   for (std::size_t k = points.hit_count; k < points.size(); ++k) {
-    Slot& t = slot_of(k);
-    if (t.epoch != now) {
-      t.epoch = now;
-      t.entry = n;
-      offset[n] = t.offset;
+    CellTable::Slot& slot = table.slot_of(ys[k] * width + xs[k]);
+    if (!table.holds(slot)) {
+      table.enter(slot, n);
+      offset[n] = slot.offset;
       value[n++] = points.weight[k];
-    } else if (t.entry >= p.arc_count) {
-      value[t.entry] += points.weight[k];
+    } else if (slot.entry >= placed.arc_count) {
+      value[slot.entry] += points.weight[k];
     }
   }
-  std::size_t kept = p.arc_count;
-  for (std::size_t e = p.arc_count; e < n; ++e) {
-    if (value[e] == 0.0f) continue;
-    offset[kept] = offset[e];
-    value[kept++] = value[e];
+  return n;
+}
+
+/// Keeps the first `entries` entries of `placed` but the free ones that sum to 0 (no cell),
+/// in order.
+void drop_empty_cells(PlacedLocalGrid& placed, std::size_t entries) {
+  std::size_t kept = placed.arc_count;
+  for (std::size_t e = placed.arc_count; e < entries; ++e) {
+    if (placed.value[e] == 0.0f) continue;
+    placed.offset[kept] = placed.offset[e];
+    placed.value[kept++] = placed.value[e];
   }
-  p.offset.resize(kept);
-  p.value.resize(kept);
-  set_fixed_point(p);
-  return p;
+  placed.offset.resize(kept);
+  placed.value.resize(kept);
+}
+
+}  // namespace
+
+PlacedLocalGrid place_points(const ScanPoints& points, double theta, const PaddedGrid& global) {
+  const double inv = 1.0 / global.grid.geometry.resolution;
+  const double c = std::cos(theta), s = std::sin(theta);
+  // Pass 1, independent per point: the cells.
+  thread_local std::vector<int> xs, ys;
+  xs.resize(points.size());
+  ys.resize(points.size());
+  point_cells(points.x.data(), points.y.data(), points.size(), c, s, inv, xs.data(), ys.data());
+  // Pass 2: merge points per cell.
+  PlacedLocalGrid placed;
+  placed.offset.resize(points.size());
+  placed.value.resize(points.size());
+  const std::uint32_t entries =
+      merge_cells(points, xs.data(), ys.data(), global.grid.width(), placed);
+  drop_empty_cells(placed, entries);
+  set_fixed_point(placed);
+  return placed;
 }
 
 PlacedLocalGrid place_heading(const SearchLevel& level, double theta) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
@@ -36,28 +37,33 @@ void check_positive(double v, const char* field) {
 
 }  // namespace
 
-void validate(const IcpOptions& o) {
-  check_positive(o.gap_m, "gap_m");
-  check_positive(o.resolution_m, "resolution_m");
-  check_positive(o.huber_k, "huber_k");
-  check_positive(o.min_scale_m, "min_scale_m");
-  check_positive(o.max_correspondence_m, "max_correspondence_m");
-  check_positive(o.fit_distance_m, "fit_distance_m");
-  if (!(o.breakpoint_angle_rad >= 0.0) || o.breakpoint_angle_rad >= std::numbers::pi / 2) {
+void validate(const IcpOptions& options) {
+  check_positive(options.gap_m, "gap_m");
+  check_positive(options.resolution_m, "resolution_m");
+  check_positive(options.huber_k, "huber_k");
+  check_positive(options.min_scale_m, "min_scale_m");
+  check_positive(options.max_correspondence_m, "max_correspondence_m");
+  check_positive(options.fit_distance_m, "fit_distance_m");
+  if (!(options.breakpoint_angle_rad >= 0.0) ||
+      options.breakpoint_angle_rad >= std::numbers::pi / 2) {
     throw Error("IcpOptions.breakpoint_angle_rad must lie in [0, pi/2), got " +
-                std::to_string(o.breakpoint_angle_rad));
+                std::to_string(options.breakpoint_angle_rad));
   }
-  if (o.min_segment_points < 1) throw Error("IcpOptions.min_segment_points must be >= 1, got 0");
-  if (o.max_iterations < 1) {
-    throw Error("IcpOptions.max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
+  if (options.min_segment_points < 1)
+    throw Error("IcpOptions.min_segment_points must be >= 1, got 0");
+  if (options.max_iterations < 1) {
+    throw Error("IcpOptions.max_iterations must be >= 1, got " +
+                std::to_string(options.max_iterations));
   }
-  if (!(o.settled_xy_m >= 0.0) || !(o.settled_theta_rad >= 0.0)) {
+  if (!(options.settled_xy_m >= 0.0) || !(options.settled_theta_rad >= 0.0)) {
     throw Error("IcpOptions.settled_xy_m and settled_theta_rad must be >= 0, got " +
-                std::to_string(o.settled_xy_m) + " and " + std::to_string(o.settled_theta_rad));
+                std::to_string(options.settled_xy_m) + " and " +
+                std::to_string(options.settled_theta_rad));
   }
-  if (!(o.converged_xy_m >= 0.0) || !(o.converged_theta_rad >= 0.0)) {
+  if (!(options.converged_xy_m >= 0.0) || !(options.converged_theta_rad >= 0.0)) {
     throw Error("IcpOptions.converged_xy_m and converged_theta_rad must be >= 0, got " +
-                std::to_string(o.converged_xy_m) + " and " + std::to_string(o.converged_theta_rad));
+                std::to_string(options.converged_xy_m) + " and " +
+                std::to_string(options.converged_theta_rad));
   }
 }
 
@@ -85,11 +91,12 @@ void fit_line(const std::vector<Eigen::Vector2d>& points, Segment& s) {
   s.mean_distance_m = sum / n;  // seed 004 eq. (10): d_m
 }
 
-/// One point-to-tangent-line pair: transformed matching point q, tangent normal n, residual r.
+/// One point-to-tangent-line pair: transformed matching point q, tangent normal n, residual
+/// r = n.(q - m) (seed 004 eq. (2)-(4)).
 struct Pair {
-  Eigen::Vector2d q;
-  Eigen::Vector2d n;
-  double r;
+  Eigen::Vector2d point;   ///< q
+  Eigen::Vector2d normal;  ///< n
+  double residual;         ///< r
 };
 
 /// What the matching points are matched against: points with a bucket index and a tangent
@@ -97,7 +104,7 @@ struct Pair {
 /// contour (normals set) has a fixed normal per point.
 struct Model {
   const std::vector<Eigen::Vector2d>& points;
-  const detail::PointBuckets& grid;
+  const detail::PointBuckets& buckets;
   const std::vector<int>* segment_of = nullptr;
   const std::vector<Eigen::Vector2d>* normals = nullptr;
 };
@@ -113,7 +120,7 @@ void make_pairs(const Model& model, const std::vector<Eigen::Vector2d>& src,
   const int n = static_cast<int>(model.points.size());
   for (const auto& p : src) {
     const Eigen::Vector2d q = R * p + t;
-    const int i = model.grid.nearest(q, max_dist);
+    const int i = model.buckets.nearest(q, max_dist);
     if (i < 0) continue;
     if (model.normals != nullptr) {
       const Eigen::Vector2d& normal = (*model.normals)[i];
@@ -143,8 +150,8 @@ constexpr std::size_t kSettleSteps = 5;
 
 /// The residual's gradient for an increment that turns about the pose's position t.
 Eigen::Vector3d jacobian(const Pair& p, const Eigen::Vector2d& t) {
-  const Eigen::Vector2d v = p.q - t;
-  return {p.n.x(), p.n.y(), p.n.dot(Eigen::Vector2d(-v.y(), v.x()))};
+  const Eigen::Vector2d v = p.point - t;
+  return {p.normal.x(), p.normal.y(), p.normal.dot(Eigen::Vector2d(-v.y(), v.x()))};
 }
 
 /// The covariance of a pose nothing constrains.
@@ -153,11 +160,11 @@ Eigen::Matrix3d unconstrained() {
 }
 
 /// Every pose of `history` within settled_xy_m and settled_theta_rad of the last.
-bool settled(const std::vector<Pose2>& history, const IcpOptions& o) {
+bool settled(const std::vector<Pose2>& history, const IcpOptions& options) {
   const Pose2& last = history.back();
   return std::all_of(history.begin(), history.end(), [&](const Pose2& p) {
-    return std::hypot(p.x - last.x, p.y - last.y) <= o.settled_xy_m &&
-           std::abs(normalize_angle(p.theta - last.theta)) <= o.settled_theta_rad;
+    return std::hypot(p.x - last.x, p.y - last.y) <= options.settled_xy_m &&
+           std::abs(normalize_angle(p.theta - last.theta)) <= options.settled_theta_rad;
   });
 }
 
@@ -316,88 +323,126 @@ std::vector<Eigen::Vector2d> matching_points(const std::vector<Eigen::Vector2d>&
   return src;
 }
 
-/// The robust iteration (seed 004 eq. (5)-(7)) of `src` against `model` from `initial`.
-IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, const Pose2& initial,
-                const IcpOptions& options) {
-  IcpResult result;
-  // Unknown until the final pairs say otherwise: infinite variances, no correlation.
-  result.covariance = unconstrained();
-  double theta = initial.theta;
-  Eigen::Vector2d t(initial.x, initial.y);
-  std::vector<Pair> pairs;
-  std::vector<double> residuals;
-  std::vector<Pose2> history;
-  double sigma = options.min_scale_m;
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (int it = 0; it < options.max_iterations; ++it) {
-    const Eigen::Matrix2d R = Eigen::Rotation2Dd(theta).toRotationMatrix();
-    make_pairs(model, src, R, t, options.max_correspondence_m, pairs);
-    if (pairs.size() < 3) break;
-    residuals.resize(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k) residuals[k] = pairs[k].r;
-    // sigma of the errors at the pose of the previous step (seed 004 eq. (5)-(6)).
-    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
-
-    // Gauss-Newton on an increment (dx, dy, dtheta) that turns about the pose's own position
-    // t: q' = R(dtheta) (q - t) + t + (dx, dy). The residual n.(q - m) then has gradient
-    // (n_x, n_y, n.perp(q - t)), which does not grow with the distance of t from the model's
-    // origin (a map in a far-off frame stays well conditioned), and the increment is the
-    // pose's own change. Seed 004 eq. (7) solves the same weighted normal equations in the
-    // linear parameters (a, b, c, d) of eq. (1); the 3-parameter form keeps the rotation rigid.
-    H.setZero();
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (const auto& p : pairs) {
-      const double w = options.robust ? huber_weight(p.r / sigma, options.huber_k) : 1.0;
-      const Eigen::Vector3d J = jacobian(p, t);
-      H.noalias() += w * J * J.transpose();
-      g.noalias() += w * p.r * J;
+/// Each point's tangent normal: the total-least-squares line of up to `tangent_points`
+/// neighbours of its segment, centred on it (a chord of two noisy neighbours points
+/// anywhere); +y for points in no segment of 2 or more.
+std::vector<Eigen::Vector2d> fitted_normals(const std::vector<Eigen::Vector2d>& points,
+                                            const std::vector<Segment>& segments,
+                                            std::size_t tangent_points) {
+  std::vector<Eigen::Vector2d> normals(points.size(), Eigen::Vector2d::UnitY());
+  const int half = static_cast<int>(tangent_points / 2);
+  for (const Segment& seg : segments) {
+    if (seg.size() < 2) continue;
+    for (std::size_t i = seg.begin; i < seg.end; ++i) {
+      Segment local;
+      local.begin = std::max<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(i) - half,
+                                             static_cast<std::ptrdiff_t>(seg.begin));
+      local.end = std::min(i + static_cast<std::size_t>(half) + 1, seg.end);
+      fit_line(points, local);
+      normals[i] = Eigen::Vector2d(-local.direction.y(), local.direction.x());
     }
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
-    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) break;  // degenerate geometry
-    Eigen::Vector3d delta = -ldlt.solve(g);
-    // A step longer than the correspondence reach leaves every pair it was computed from: a
-    // nearly degenerate system (few pairs on one wall) would throw the pose away. Shortened.
-    const double step = delta.head<2>().norm();
-    if (step > options.max_correspondence_m) delta *= options.max_correspondence_m / step;
-    t += delta.head<2>();
-    theta = normalize_angle(theta + delta.z());
+  }
+  return normals;
+}
+
+/// The state of one solve(): the pose (heading theta, position t), the latest pairs and the
+/// Huber scale of their residuals.
+struct IcpState {
+  double theta = 0.0;
+  Eigen::Vector2d t = Eigen::Vector2d::Zero();
+  std::vector<Pair> pairs;
+  double sigma = 0.0;
+};
+
+/// The scale sigma of the pairs' residuals (seed 004 eq. (5)-(6)).
+double pair_scale(const std::vector<Pair>& pairs, const IcpOptions& options) {
+  std::vector<double> residuals(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) residuals[k] = pairs[k].residual;
+  return residual_scale(residuals, options.scale, options.min_scale_m);
+}
+
+/// The Gauss-Newton increment (dx, dy, dtheta) of the pairs under Huber weights at scale
+/// sigma, shortened to the correspondence reach; nullopt for degenerate geometry.
+std::optional<Eigen::Vector3d> robust_step(const std::vector<Pair>& pairs, const Eigen::Vector2d& t,
+                                           double sigma, const IcpOptions& options) {
+  // Gauss-Newton on an increment (dx, dy, dtheta) that turns about the pose's own position
+  // t: q' = R(dtheta) (q - t) + t + (dx, dy). The residual n.(q - m) then has gradient
+  // (n_x, n_y, n.perp(q - t)), which does not grow with the distance of t from the model's
+  // origin (a map in a far-off frame stays well conditioned), and the increment is the
+  // pose's own change. Seed 004 eq. (7) solves the same weighted normal equations in the
+  // linear parameters (a, b, c, d) of eq. (1); the 3-parameter form keeps the rotation rigid.
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (const auto& p : pairs) {
+    const double w = options.robust ? huber_weight(p.residual / sigma, options.huber_k) : 1.0;
+    const Eigen::Vector3d J = jacobian(p, t);
+    H.noalias() += w * J * J.transpose();
+    g.noalias() += w * p.residual * J;
+  }
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+  if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-12) return std::nullopt;
+  Eigen::Vector3d delta = -ldlt.solve(g);
+  // A step longer than the correspondence reach leaves every pair it was computed from: a
+  // nearly degenerate system (few pairs on one wall) would throw the pose away. Shortened.
+  const double step = delta.head<2>().norm();
+  if (step > options.max_correspondence_m) delta *= options.max_correspondence_m / step;
+  return delta;
+}
+
+/// The robust iterations (seed 004 eq. (5)-(7)) from the state's pose, until converged or
+/// settled (result.converged), out of pairs, degenerate or out of iterations.
+void iterate(const Model& model, const std::vector<Eigen::Vector2d>& src, IcpState& state,
+             const IcpOptions& options, IcpResult& result) {
+  std::vector<Pose2> history;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(state.theta).toRotationMatrix();
+    make_pairs(model, src, R, state.t, options.max_correspondence_m, state.pairs);
+    if (state.pairs.size() < 3) break;
+    // sigma of the errors at the pose of the previous step (seed 004 eq. (5)-(6)).
+    state.sigma = pair_scale(state.pairs, options);
+    const std::optional<Eigen::Vector3d> delta =
+        robust_step(state.pairs, state.t, state.sigma, options);
+    if (!delta) break;  // degenerate geometry
+    state.t += delta->head<2>();
+    state.theta = normalize_angle(state.theta + delta->z());
     result.iterations = it + 1;
-    if (delta.head<2>().norm() < options.converged_xy_m &&
-        std::abs(delta.z()) < options.converged_theta_rad) {
+    if (delta->head<2>().norm() < options.converged_xy_m &&
+        std::abs(delta->z()) < options.converged_theta_rad) {
       result.converged = true;
-      break;
+      return;
     }
     // On real scans a few pairs can flip between two tangents forever: the pose then
     // cycles within a tiny region. Settled when the last kSettleSteps poses lie that close.
-    history.push_back({t.x(), t.y(), theta});
+    history.push_back({state.t.x(), state.t.y(), state.theta});
     if (history.size() > kSettleSteps) history.erase(history.begin());
     if (history.size() == kSettleSteps && settled(history, options)) {
       result.converged = true;
-      break;
+      return;
     }
   }
+}
 
-  // Final residuals at the returned pose.
-  make_pairs(model, src, Eigen::Rotation2Dd(theta).toRotationMatrix(), t,
-             options.max_correspondence_m, pairs);
-  result.pose = {t.x(), t.y(), theta};
+/// The result at the state's final pose: its pairs, rms and fitting pairs, the scale and
+/// share of inliers, and their Gauss-Newton covariance when they constrain the pose.
+void final_fit(const Model& model, const std::vector<Eigen::Vector2d>& src, IcpState& state,
+               const IcpOptions& options, IcpResult& result) {
+  make_pairs(model, src, Eigen::Rotation2Dd(state.theta).toRotationMatrix(), state.t,
+             options.max_correspondence_m, state.pairs);
+  const std::vector<Pair>& pairs = state.pairs;
+  result.pose = {state.t.x(), state.t.y(), state.theta};
   result.pairs = pairs.size();
   result.matching_points = src.size();
   if (!pairs.empty()) {
-    residuals.resize(pairs.size());
     double sum2 = 0.0;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      residuals[k] = pairs[k].r;
-      sum2 += pairs[k].r * pairs[k].r;
-    }
-    sigma = residual_scale(residuals, options.scale, options.min_scale_m);
+    for (const auto& p : pairs) sum2 += p.residual * p.residual;
+    state.sigma = pair_scale(pairs, options);
     std::size_t inliers = 0;
-    H.setZero();
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
     for (const auto& p : pairs) {
-      result.fitting_pairs += std::abs(p.r) <= options.fit_distance_m ? 1 : 0;
-      const bool inlier = std::abs(p.r) <= options.huber_k * sigma;
+      result.fitting_pairs += std::abs(p.residual) <= options.fit_distance_m ? 1 : 0;
+      const bool inlier = std::abs(p.residual) <= options.huber_k * state.sigma;
       inliers += inlier ? 1 : 0;
-      const Eigen::Vector3d J = jacobian(p, t);
+      const Eigen::Vector3d J = jacobian(p, state.t);
       if (inlier) H.noalias() += J * J.transpose();
     }
     result.rms_m = std::sqrt(sum2 / static_cast<double>(pairs.size()));
@@ -405,9 +450,25 @@ IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, con
     // Gauss-Newton covariance sigma^2 H^-1 of the inliers; the increment is the pose's own
     // change (it turns about t), so this is the covariance of (x, y, theta).
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(H);
-    if (inliers >= 3 && lu.isInvertible()) result.covariance = sigma * sigma * lu.inverse();
+    if (inliers >= 3 && lu.isInvertible()) {
+      result.covariance = state.sigma * state.sigma * lu.inverse();
+    }
   }
-  result.scale_m = sigma;
+  result.scale_m = state.sigma;
+}
+
+/// The robust iteration (seed 004 eq. (5)-(7)) of `src` against `model` from `initial`.
+IcpResult solve(const Model& model, const std::vector<Eigen::Vector2d>& src, const Pose2& initial,
+                const IcpOptions& options) {
+  IcpResult result;
+  // Unknown until the final pairs say otherwise: infinite variances, no correlation.
+  result.covariance = unconstrained();
+  IcpState state;
+  state.theta = initial.theta;
+  state.t = Eigen::Vector2d(initial.x, initial.y);
+  state.sigma = options.min_scale_m;
+  iterate(model, src, state, options, result);
+  final_fit(model, src, state, options, result);
   return result;
 }
 
@@ -444,29 +505,14 @@ IcpResult match_scans(const std::vector<Eigen::Vector2d>& reference,
     throw Error("match_scans: reference scan has no segment of 2 or more points within gap_m = " +
                 std::to_string(options.gap_m) + " m");
   }
-  const detail::PointBuckets grid(reference, usable, options.max_correspondence_m);
-  std::vector<Eigen::Vector2d> normals;
-  if (options.tangent_points > 2) {
-    // Each point's tangent: the total-least-squares line of up to tangent_points neighbours
-    // of its segment, centred on it (a chord of two noisy neighbours points anywhere).
-    normals.resize(reference.size(), Eigen::Vector2d::UnitY());
-    const int half = static_cast<int>(options.tangent_points / 2);
-    for (const Segment& seg : ref_segments) {
-      if (seg.size() < 2) continue;
-      for (std::size_t i = seg.begin; i < seg.end; ++i) {
-        Segment local;
-        local.begin = std::max<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(i) - half,
-                                               static_cast<std::ptrdiff_t>(seg.begin));
-        local.end = std::min(i + static_cast<std::size_t>(half) + 1, seg.end);
-        fit_line(reference, local);
-        normals[i] = Eigen::Vector2d(-local.direction.y(), local.direction.x());
-      }
-    }
-  }
+  const detail::PointBuckets buckets(reference, usable, options.max_correspondence_m);
+  const std::vector<Eigen::Vector2d> normals =
+      options.tangent_points > 2 ? fitted_normals(reference, ref_segments, options.tangent_points)
+                                 : std::vector<Eigen::Vector2d>{};
   // Seed 004 puts the control points on the previous curve and the tangents on the current
   // one; here the roles are swapped so the result is directly the pose of `current` in the
   // reference frame (the same problem, with the tangents on the scan we index once).
-  const Model model{reference, grid, &segment_of, normals.empty() ? nullptr : &normals};
+  const Model model{reference, buckets, &segment_of, normals.empty() ? nullptr : &normals};
   return solve(model, matching_points(current, options, "match_scans"), initial, options);
 }
 
