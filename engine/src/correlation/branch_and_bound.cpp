@@ -26,22 +26,8 @@ namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
 
-/// A block of 2^h x 2^h translations starting at (ix, iy), times the 2^a headings starting at
-/// it (clipped to the lattice). Its first pose in lattice order is (it, iy, ix): every other
-/// pose has a larger heading, or row, or the same row and a larger column.
-struct Node {
-  double bound = 0.0;
-  int it = 0, iy = 0, ix = 0, h = 0, a = 0;
-};
-
 bool index_less(int it, int iy, int ix, const LatticePose& b) {
   return std::tie(it, iy, ix) < std::tie(b.it, b.iy, b.ix);
-}
-
-/// Visit order: higher bound first, then lower first pose.
-bool visit_before(const Node& a, const Node& b) {
-  if (a.bound != b.bound) return a.bound > b.bound;
-  return std::tie(a.it, a.iy, a.ix) < std::tie(b.it, b.iy, b.ix);
 }
 
 void validate(const Lattice& lattice, const PaddedGrid& g, const BoundPyramid& pyramid) {
@@ -205,84 +191,55 @@ class Search {
  public:
   Search(const Lattice& lattice, const HeadingGrids& grids, const BoundPyramid& pyramid,
          const BranchAndBoundOptions& options)
-      : lat_(lattice), grids_(grids), pyr_(pyramid), opt_(options), g_(*grids.level().global) {
+      : lattice_(lattice),
+        grids_(grids),
+        pyramid_(pyramid),
+        options_(options),
+        global_(*grids.level().global) {
     points_ = options.heading_intervals ? grids.points() : nullptr;
-    inv_res_ = 1.0 / g_.grid.geometry.resolution;
-    width_ = g_.grid.width();
-    arc_levels_.push_back(g_.arc_view.data());
-    min_levels_.push_back(g_.grid.cells.data());
-    for (int h = 1; h <= pyr_.depth(); ++h) {
-      arc_levels_.push_back(pyr_.arc_max[static_cast<std::size_t>(h)].cells.data());
-      min_levels_.push_back(pyr_.grid_min[static_cast<std::size_t>(h)].cells.data());
+    inv_res_ = 1.0 / global_.grid.geometry.resolution;
+    width_ = global_.grid.width();
+    arc_levels_.push_back(global_.arc_view.data());
+    min_levels_.push_back(global_.grid.cells.data());
+    for (int h = 1; h <= pyramid_.depth(); ++h) {
+      arc_levels_.push_back(pyramid_.arc_max[static_cast<std::size_t>(h)].cells.data());
+      min_levels_.push_back(pyramid_.grid_min[static_cast<std::size_t>(h)].cells.data());
     }
-    for (std::size_t h = 0; h < pyr_.arc_max8.size(); ++h) {
-      arc8_levels_.push_back(pyr_.arc_max8[h].data());
-      min8_levels_.push_back(pyr_.grid_min8[h].data());
+    for (std::size_t h = 0; h < pyramid_.arc_max8.size(); ++h) {
+      arc8_levels_.push_back(pyramid_.arc_max8[h].data());
+      min8_levels_.push_back(pyramid_.grid_min8[h].data());
     }
     if (points_ != nullptr) {
       double mass = 0.0;
       for (float w : points_->weight) mass += std::abs(static_cast<double>(w));
       slack_ = (static_cast<double>(points_->size()) + 4.0) * std::ldexp(1.0, -24) * mass *
-               std::max(1.0f, pyr_.abs_max);
+               std::max(1.0f, pyramid_.abs_max);
     }
-    if (opt_.incumbent) {
-      best_ = *opt_.incumbent;
+    if (options_.incumbent) {
+      best_ = *options_.incumbent;
       found_ = true;
       best_score_.store(best_.score);
     }
-    if (opt_.budget_ms > 0.0) {
+    if (options_.budget_ms > 0.0) {
       deadline_ = std::chrono::steady_clock::now() +
                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                      std::chrono::duration<double, std::milli>(opt_.budget_ms));
+                      std::chrono::duration<double, std::milli>(options_.budget_ms));
     }
   }
 
   SearchResult run() {
-    const int top = std::min(pyr_.depth(), bound_depth_for(lat_));
-    if (top == 0 && points_ == nullptr) {  // no bound levels: the exhaustive search
-      Worker w(*this);
-      for (int it = 0; it < lat_.headings; ++it) {
-        for (int iy = lat_.y0; iy <= lat_.y1; ++iy) {
-          for (int ix = lat_.x0; ix <= lat_.x1; ++ix) w.score_leaf(it, iy, ix);
-        }
-      }
-      w.merge();
-      return finish(false);
-    }
-    // Heading intervals at the top: the widest whose widening stays within half a block.
-    int a_top = 0;
-    if (points_ != nullptr && opt_.heading_intervals) {
-      while ((1 << a_top) < lat_.headings &&
-             2 * widening(points_->max_norm, half_span(a_top + 1)) <= (1 << top)) {
-        ++a_top;
-      }
-    }
+    const int top = std::min(pyramid_.depth(), bound_depth_for(lattice_));
+    if (top == 0 && points_ == nullptr) return run_exhaustive();  // no bound levels
+    const int top_headings = top_heading_level(top);
     // Each thread makes the top nodes of its share of the headings (building their grids in
     // parallel) into its own best-first heap, then searches, sharing the incumbent and
     // stealing from the others' heaps when its own runs dry.
-    const auto threads = static_cast<std::size_t>(std::max(1, opt_.threads));
+    const auto threads = static_cast<std::size_t>(std::max(1, options_.threads));
     heaps_.assign(threads, {});
-    for (std::size_t t = 0; t < threads; ++t) heap_mu_.push_back(std::make_unique<std::mutex>());
+    for (std::size_t t = 0; t < threads; ++t) heap_mutex_.push_back(std::make_unique<std::mutex>());
     roots_pending_ = static_cast<int>(threads);
-    const int stride = 1 << a_top;
-    auto run_thread = [this, top, a_top, stride, threads](std::size_t t) {
-      try {
-        Worker w(*this);
-        const int side = 1 << top;
-        for (int it = static_cast<int>(t) * stride; it < lat_.headings;
-             it += static_cast<int>(threads) * stride) {
-          for (int iy = lat_.y0; iy <= lat_.y1; iy += side) {
-            for (int ix = lat_.x0; ix <= lat_.x1; ix += side) w.add_child(it, a_top, iy, ix, top);
-          }
-        }
-        heaps_[t] = std::move(w.children);
-        std::make_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
-        w.merge();
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mu_);
-        if (!error_) error_ = std::current_exception();
-        stopped_ = true;
-      }
+    auto run_thread = [this, top, top_headings, threads](std::size_t t) {
+      make_top_nodes(t, threads, top, top_headings);
       // Every heap must hold its top nodes before anyone may conclude the search is over.
       --roots_pending_;
       while (roots_pending_.load() > 0) std::this_thread::yield();
@@ -297,6 +254,22 @@ class Search {
   }
 
  private:
+  /// A block of 2^block_level x 2^block_level translations starting at cell (x, y), times the
+  /// 2^heading_level headings starting at `heading` (clipped to the lattice). Its first pose
+  /// in lattice order is (heading, y, x): every other pose has a larger heading, or row, or
+  /// the same row and a larger column.
+  struct Node {
+    double bound = 0.0;
+    int heading = 0, y = 0, x = 0, block_level = 0, heading_level = 0;
+  };
+
+  /// Visit order: higher bound first, then lower first pose.
+  static bool visit_before(const Node& a, const Node& b) {
+    if (a.bound != b.bound) return a.bound > b.bound;
+    return std::tie(a.heading, a.y, a.x) < std::tie(b.heading, b.y, b.x);
+  }
+  static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
+
   /// What one thread collects before merging it under the lock.
   struct Worker {
     explicit Worker(Search& s) : search(s) {}
@@ -305,17 +278,18 @@ class Search {
     std::vector<LatticePose> scored;
     long long cells = 0;
 
+    /// Scores the pose (unless excluded) and makes it the incumbent when it is better.
     void score_leaf(int it, int iy, int ix) {
-      for (const Exclusion& zone : search.opt_.exclude) {
+      for (const Exclusion& zone : search.options_.exclude) {
         if (zone.contains(ix, iy, it)) return;
       }
       const PlacedLocalGrid& local = search.grids_.placed(it);
-      const LatticePose c{ix, iy, it, score(search.g_, local, ix, iy)};
+      const LatticePose c{ix, iy, it, score(search.global_, local, ix, iy)};
       cells += static_cast<long long>(local.value.size());
       scored.push_back(c);
       // Lock-free reject of the usual case: strictly worse than the incumbent.
       if (c.score < search.best_score_.load(std::memory_order_relaxed)) return;
-      std::lock_guard<std::mutex> lock(search.mu_);
+      std::lock_guard<std::mutex> lock(search.mutex_);
       if (!search.found_ || better(c, search.best_)) {
         search.best_ = c;
         search.found_ = true;
@@ -324,55 +298,62 @@ class Search {
     }
 
     /// Bounds (or scores, for a single pose) the child node and keeps it if promising.
-    void add_child(int it, int a, int iy, int ix, int h) {
-      const Lattice& lat = search.lat_;
-      if (a == 0 && h == 0) {
-        score_leaf(it, iy, ix);
+    void add_child(int heading, int heading_level, int y, int x, int block_level) {
+      const Lattice& lattice = search.lattice_;
+      if (heading_level == 0 && block_level == 0) {
+        score_leaf(heading, y, x);
         return;
       }
-      const int it1 = std::min(it + (1 << a) - 1, lat.headings - 1);
-      const int side = 1 << h;
+      const int last_heading = std::min(heading + (1 << heading_level) - 1, lattice.headings - 1);
+      const int side = 1 << block_level;
       // A node inside one zone holds no candidate (one covered only by several zones
       // together is kept: only less pruning).
-      for (const Exclusion& zone : search.opt_.exclude) {
-        if (zone.contains_block(it, it1, ix, iy, std::min(ix + side - 1, lat.x1),
-                                std::min(iy + side - 1, lat.y1))) {
+      for (const Exclusion& zone : search.options_.exclude) {
+        if (zone.contains_block(heading, last_heading, x, y, std::min(x + side - 1, lattice.x1),
+                                std::min(y + side - 1, lattice.y1))) {
           return;
         }
       }
-      Node n{0.0, it, iy, ix, h, a};
-      if (a == 0) {
-        const PlacedLocalGrid& local = search.grids_.placed(it);
-        n.bound = block_bound(search.pyr_, local, h, ix, iy);
+      Node node{0.0, heading, y, x, block_level, heading_level};
+      if (heading_level == 0) {
+        const PlacedLocalGrid& local = search.grids_.placed(heading);
+        node.bound = block_bound(search.pyramid_, local, block_level, x, y);
         cells += static_cast<long long>(local.value.size());
       } else {
-        n.bound = search.interval_bound(n, it1);
+        node.bound = search.interval_bound(node, last_heading);
         cells += static_cast<long long>(search.points_->size());
       }
-      if (search.promising_fast(n)) children.push_back(n);
+      if (search.promising_fast(node)) children.push_back(node);
     }
 
-    void expand(const Node& n) {
-      const Lattice& lat = search.lat_;
-      if (n.a > 0 &&
-          (n.h == 0 ||
-           2 * search.widening(search.points_->max_norm, search.half_span(n.a)) >= (1 << n.h))) {
-        const int half = 1 << (n.a - 1);
-        add_child(n.it, n.a - 1, n.iy, n.ix, n.h);
-        if (n.it + half < lat.headings) add_child(n.it + half, n.a - 1, n.iy, n.ix, n.h);
+    /// Adds the node's children: its two half intervals of headings while their widening is
+    /// at least half the block, else its four sub-blocks.
+    void expand(const Node& node) {
+      const Lattice& lattice = search.lattice_;
+      if (node.heading_level > 0 &&
+          (node.block_level == 0 ||
+           2 * search.widening(search.points_->max_norm, search.half_span(node.heading_level)) >=
+               (1 << node.block_level))) {
+        const int half = 1 << (node.heading_level - 1);
+        add_child(node.heading, node.heading_level - 1, node.y, node.x, node.block_level);
+        if (node.heading + half < lattice.headings) {
+          add_child(node.heading + half, node.heading_level - 1, node.y, node.x, node.block_level);
+        }
         return;
       }
-      const int half = 1 << (n.h - 1);
-      const int ix_end = std::min(n.ix + 2 * half - 1, lat.x1);
-      const int iy_end = std::min(n.iy + 2 * half - 1, lat.y1);
-      for (int iy = n.iy; iy <= iy_end; iy += half) {
-        for (int ix = n.ix; ix <= ix_end; ix += half) add_child(n.it, n.a, iy, ix, n.h - 1);
+      const int half = 1 << (node.block_level - 1);
+      const int x_end = std::min(node.x + 2 * half - 1, lattice.x1);
+      const int y_end = std::min(node.y + 2 * half - 1, lattice.y1);
+      for (int iy = node.y; iy <= y_end; iy += half) {
+        for (int ix = node.x; ix <= x_end; ix += half) {
+          add_child(node.heading, node.heading_level, iy, ix, node.block_level - 1);
+        }
       }
     }
 
     /// Hands the scored leaves and counters to the search (under its lock).
     void merge() {
-      std::lock_guard<std::mutex> lock(search.mu_);
+      std::lock_guard<std::mutex> lock(search.mutex_);
       search.result_.poses_scored += static_cast<long long>(scored.size());
       search.result_.cells_scored += cells;
       search.result_.scored.insert(search.result_.scored.end(), scored.begin(), scored.end());
@@ -381,58 +362,116 @@ class Search {
     }
   };
 
+  /// No bound levels: every pose scored, in lattice order.
+  SearchResult run_exhaustive() {
+    Worker worker(*this);
+    for (int it = 0; it < lattice_.headings; ++it) {
+      for (int iy = lattice_.y0; iy <= lattice_.y1; ++iy) {
+        for (int ix = lattice_.x0; ix <= lattice_.x1; ++ix) worker.score_leaf(it, iy, ix);
+      }
+    }
+    worker.merge();
+    return finish(false);
+  }
+
+  /// The heading level of the top nodes: with heading intervals, the widest interval whose
+  /// widening stays within half a top block; 0 (one heading per node) otherwise.
+  int top_heading_level(int top) const {
+    int level = 0;
+    if (points_ != nullptr && options_.heading_intervals) {
+      while ((1 << level) < lattice_.headings &&
+             2 * widening(points_->max_norm, half_span(level + 1)) <= (1 << top)) {
+        ++level;
+      }
+    }
+    return level;
+  }
+
+  /// Thread t's top nodes (every threads-th interval of 2^heading_level headings, blocks of
+  /// 2^top cells) into heap t; an error stops the search.
+  void make_top_nodes(std::size_t t, std::size_t threads, int top, int heading_level) {
+    try {
+      Worker worker(*this);
+      const int side = 1 << top;
+      const int stride = 1 << heading_level;
+      for (int it = static_cast<int>(t) * stride; it < lattice_.headings;
+           it += static_cast<int>(threads) * stride) {
+        for (int iy = lattice_.y0; iy <= lattice_.y1; iy += side) {
+          for (int ix = lattice_.x0; ix <= lattice_.x1; ix += side) {
+            worker.add_child(it, heading_level, iy, ix, top);
+          }
+        }
+      }
+      heaps_[t] = std::move(worker.children);
+      std::make_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+      worker.merge();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+      stopped_ = true;
+    }
+  }
+
   /// Half the angle an interval of 2^a headings spans around its middle heading, in steps.
   static int half_span(int a) { return a == 0 ? 0 : 1 << (a - 1); }
   /// Cells a point at `norm` (m) can move when the heading turns by up to `steps` steps.
   int widening(double norm, int steps) const {
     if (steps == 0) return 0;
-    return static_cast<int>(norm * steps * std::abs(lat_.step_theta) * inv_res_ + 1e-6) + 1;
+    return static_cast<int>(norm * steps * std::abs(lattice_.step_theta) * inv_res_ + 1e-6) + 1;
   }
 
-  /// Upper bound of every pose of node n (headings [n.it, it1]) from its rigid points.
-  double interval_bound(const Node& n, int it1) const {
-    const int ref = (n.it + it1) / 2;
-    const int w = widening(points_->max_norm, std::max(ref - n.it, it1 - ref));
+  /// Upper bound of every pose of the node (headings [node.heading, last_heading]) from its
+  /// rigid points.
+  double interval_bound(const Node& node, int last_heading) const {
+    const int ref = (node.heading + last_heading) / 2;
+    const int widen = widening(points_->max_norm, std::max(ref - node.heading, last_heading - ref));
     const auto& cells = grids_.point_cells(ref);
-    const double sums = pyr_.ternary() ? interval_sum(arc8_levels_, min8_levels_, n, w, cells)
-                                       : interval_sum(arc_levels_, min_levels_, n, w, cells);
+    const double sums = pyramid_.ternary()
+                            ? interval_sum(arc8_levels_, min8_levels_, node, widen, cells)
+                            : interval_sum(arc_levels_, min_levels_, node, widen, cells);
     return sums + slack_;
   }
 
-  /// The heading-interval bound's sums (see interval_bound), over grids of T.
+  /// The heading-interval bound's sums (see interval_bound), over grids of T: every point's
+  /// cell widened by `widen` cells on every side.
   template <typename T>
   double interval_sum(const std::vector<const T*>& arc, const std::vector<const T*>& min,
-                      const Node& n, int w, const HeadingGrids::PointCells& c) const {
-    const int level = std::bit_width(static_cast<unsigned>((1 << n.h) + 2 * w - 1));
+                      const Node& node, int widen, const HeadingGrids::PointCells& cells) const {
+    const int level =
+        std::bit_width(static_cast<unsigned>((1 << node.block_level) + 2 * widen - 1));
     const double free_weight =
         points_->size() > points_->hit_count ? points_->weight[points_->hit_count] : 0.0;
     double positive = 0.0, negative = 0.0;
-    if (level > pyr_.depth()) {  // wider than any level: the whole grid's extremes
-      positive = static_cast<double>(c.hit_offset.size()) * std::max(pyr_.arc_max_all, 0.0f);
-      negative = static_cast<double>(c.free_offset.size()) * std::min(pyr_.grid_min_all, 0.0f);
+    if (level > pyramid_.depth()) {  // wider than any level: the whole grid's extremes
+      positive =
+          static_cast<double>(cells.hit_offset.size()) * std::max(pyramid_.arc_max_all, 0.0f);
+      negative =
+          static_cast<double>(cells.free_offset.size()) * std::min(pyramid_.grid_min_all, 0.0f);
       return positive + free_weight * negative;
     }
-    // Pooled cells cover [x, x + 2^level): read w cells before the block.
+    // Pooled cells cover [x, x + 2^level): read `widen` cells before the block.
     const T* arc_level = arc[static_cast<std::size_t>(level)];
     const T* min_level = min[static_cast<std::size_t>(level)];
-    const int bx = n.ix + g_.pad - w, by = n.iy + g_.pad - w;
-    if (n.ix >= w && n.iy >= w) {  // every read lies inside the padded grid: flat offsets
+    const int bx = node.x + global_.pad - widen, by = node.y + global_.pad - widen;
+    if (node.x >= widen && node.y >= widen) {  // every read inside the padded grid: flat offsets
       const std::ptrdiff_t base = static_cast<std::ptrdiff_t>(by) * width_ + bx;
-      for (std::ptrdiff_t o : c.hit_offset) {
+      for (std::ptrdiff_t o : cells.hit_offset) {
         positive += std::max(static_cast<float>(arc_level[base + o]), 0.0f);
       }
-      for (std::ptrdiff_t o : c.free_offset) {
+      for (std::ptrdiff_t o : cells.free_offset) {
         negative += std::min(static_cast<float>(min_level[base + o]), 0.0f);
       }
     } else {  // near the map's edge: a read before the padded grid starts at its edge
       auto at = [&](int x, int y) {  // (dropping cells that do not exist)
         return static_cast<std::ptrdiff_t>(std::max(0, by + y)) * width_ + std::max(0, bx + x);
       };
-      for (std::size_t k = 0; k < c.hit_x.size(); ++k) {
-        positive += std::max(static_cast<float>(arc_level[at(c.hit_x[k], c.hit_y[k])]), 0.0f);
+      for (std::size_t k = 0; k < cells.hit_x.size(); ++k) {
+        positive +=
+            std::max(static_cast<float>(arc_level[at(cells.hit_x[k], cells.hit_y[k])]), 0.0f);
       }
-      for (std::size_t k = 0; k < c.free_x.size(); ++k) {
-        negative += std::min(static_cast<float>(min_level[at(c.free_x[k], c.free_y[k])]), 0.0f);
+      for (std::size_t k = 0; k < cells.free_x.size(); ++k) {
+        negative +=
+            std::min(static_cast<float>(min_level[at(cells.free_x[k], cells.free_y[k])]), 0.0f);
       }
     }
     return positive + free_weight * negative;
@@ -441,33 +480,31 @@ class Search {
   /// Could the node hold a pose better than the incumbent? Reads the incumbent's score
   /// without the lock first: it only ever rises, so a stale value never drops a node that
   /// could win; only a bound equal to it needs the exact test.
-  bool promising_fast(const Node& n) const {
-    const double b = best_score_.load(std::memory_order_relaxed);
-    if (n.bound < b) return false;
-    if (n.bound > b) return true;
-    std::lock_guard<std::mutex> lock(mu_);
-    return promising(n);
+  bool promising_fast(const Node& node) const {
+    const double incumbent = best_score_.load(std::memory_order_relaxed);
+    if (node.bound < incumbent) return false;
+    if (node.bound > incumbent) return true;
+    std::lock_guard<std::mutex> lock(mutex_);
+    return promising(node);
   }
   /// Exact test, under the lock. An equal score wins only at a lower index, and the node's
   /// lowest index is its first pose.
-  bool promising(const Node& n) const {
+  bool promising(const Node& node) const {
     if (!found_) return true;
-    if (n.bound != best_.score) return n.bound > best_.score;
-    return index_less(n.it, n.iy, n.ix, best_);
+    if (node.bound != best_.score) return node.bound > best_.score;
+    return index_less(node.heading, node.y, node.x, best_);
   }
-
-  static bool heap_less(const Node& a, const Node& b) { return visit_before(b, a); }
 
   /// Takes the best promising node of thread t's heap, or else steals one from another
   /// heap (so a thread whose share ran out helps the others). Counts it as in work.
-  bool take(std::size_t t, Node& n) {
+  bool take(std::size_t t, Node& node) {
     for (std::size_t i = 0; i < heaps_.size(); ++i) {
       const std::size_t v = (t + i) % heaps_.size();
-      std::lock_guard<std::mutex> lock(*heap_mu_[v]);
+      std::lock_guard<std::mutex> lock(*heap_mutex_[v]);
       std::vector<Node>& heap = heaps_[v];
       if (heap.empty() || !promising_fast(heap.front())) continue;
       std::pop_heap(heap.begin(), heap.end(), heap_less);
-      n = heap.back();
+      node = heap.back();
       heap.pop_back();
       ++active_;
       return true;
@@ -479,74 +516,78 @@ class Search {
   /// stops when no heap holds a promising node and no node is being expanded (a thread that
   /// pushes children always looks again, so no node is left behind).
   void work(std::size_t t) {
-    Worker w(*this);
+    Worker worker(*this);
     try {
       while (!stopped_.load(std::memory_order_relaxed)) {
         if (deadline_ && std::chrono::steady_clock::now() >= *deadline_) {
           stopped_ = true;
           break;
         }
-        Node n;
-        if (!take(t, n)) {
+        Node node;
+        if (!take(t, node)) {
           if (active_.load() == 0) break;
           std::this_thread::yield();
           continue;
         }
-        w.expand(n);
+        worker.expand(node);
         {
-          std::lock_guard<std::mutex> lock(*heap_mu_[t]);
-          for (const Node& c : w.children) {
-            heaps_[t].push_back(c);
+          std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
+          for (const Node& child : worker.children) {
+            heaps_[t].push_back(child);
             std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
           }
         }
-        w.children.clear();
+        worker.children.clear();
         --active_;
       }
     } catch (...) {
-      std::lock_guard<std::mutex> lock(mu_);
+      std::lock_guard<std::mutex> lock(mutex_);
       if (!error_) error_ = std::current_exception();
       stopped_ = true;
     }
-    w.merge();
+    worker.merge();
   }
 
+  /// The result once the threads stopped: the incumbent, and whether an open node could
+  /// still beat it (then not proven optimal, and the highest such bound).
   SearchResult finish(bool stopped) {
     // The open nodes that could still win (after the threads stopped: no lock needed).
     std::vector<Node> open;
     for (const auto& heap : heaps_) {
-      for (const Node& n : heap) {
-        if (promising(n)) open.push_back(n);
+      for (const Node& node : heap) {
+        if (promising(node)) open.push_back(node);
       }
     }
-    if (stopped && !found_ && !open.empty()) {
-      // Out of time before any pose was scored: dive from the best open node to a leaf.
-      Worker w(*this);
-      Node n = *std::min_element(open.begin(), open.end(), visit_before);
-      while (!found_) {
-        w.expand(n);
-        if (found_ || w.children.empty()) break;
-        n = *std::min_element(w.children.begin(), w.children.end(), visit_before);
-        w.children.clear();
-      }
-      w.merge();
-    }
+    if (stopped && !found_ && !open.empty()) dive(open);
     result_.best = best_;
     result_.proven_optimal = true;
     result_.upper_bound = best_.score;
-    for (const Node& n : open) {
-      if (!promising(n)) continue;  // (the dive may have raised the incumbent)
+    for (const Node& node : open) {
+      if (!promising(node)) continue;  // (the dive may have raised the incumbent)
       result_.proven_optimal = false;
-      result_.upper_bound = std::max(result_.upper_bound, n.bound);
+      result_.upper_bound = std::max(result_.upper_bound, node.bound);
     }
     return std::move(result_);
   }
 
-  const Lattice& lat_;
+  /// Out of time before any pose was scored: dives from the best open node to a leaf.
+  void dive(const std::vector<Node>& open) {
+    Worker worker(*this);
+    Node node = *std::min_element(open.begin(), open.end(), visit_before);
+    while (!found_) {
+      worker.expand(node);
+      if (found_ || worker.children.empty()) break;
+      node = *std::min_element(worker.children.begin(), worker.children.end(), visit_before);
+      worker.children.clear();
+    }
+    worker.merge();
+  }
+
+  const Lattice& lattice_;
   const HeadingGrids& grids_;
-  const BoundPyramid& pyr_;
-  const BranchAndBoundOptions& opt_;
-  const PaddedGrid& g_;
+  const BoundPyramid& pyramid_;
+  const BranchAndBoundOptions& options_;
+  const PaddedGrid& global_;  ///< the searched level's padded grid
   const ScanPoints* points_ = nullptr;
   double inv_res_ = 1.0;
   std::ptrdiff_t width_ = 0;
@@ -555,12 +596,12 @@ class Search {
   std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
 
-  std::vector<std::vector<Node>> heaps_;              ///< one best-first heap per thread ...
-  std::vector<std::unique_ptr<std::mutex>> heap_mu_;  ///< ... each with its lock
-  std::atomic<int> active_{0};                        ///< nodes being expanded
-  std::atomic<int> roots_pending_{0};                 ///< threads still making top nodes
+  std::vector<std::vector<Node>> heaps_;                 ///< one best-first heap per thread ...
+  std::vector<std::unique_ptr<std::mutex>> heap_mutex_;  ///< ... each with its lock
+  std::atomic<int> active_{0};                           ///< nodes being expanded
+  std::atomic<int> roots_pending_{0};                    ///< threads still making top nodes
 
-  mutable std::mutex mu_;  // guards the incumbent, the error and the result
+  mutable std::mutex mutex_;  // guards the incumbent, the error and the result
   LatticePose best_;
   bool found_ = false;
   std::atomic<double> best_score_{-std::numeric_limits<double>::infinity()};
