@@ -1,0 +1,110 @@
+#include "heatmap_layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+namespace gridloc::cli::layout {
+namespace {
+
+/// The canvas cut just below the legend's last row.
+cv::Mat crop_below(const cv::Mat& img, int last_baseline) {
+  return img.rowRange(0, std::min(img.rows, last_baseline + 16)).clone();
+}
+
+/// A pose as "(x, y m, theta deg)" for the legend.
+std::string pose_text(const Pose2& p) {
+  std::ostringstream s;  // not "(" + std::string: GCC 12 warns falsely (-Wrestrict) on that
+  s << "(" << plot::fixed(p.x, 2) << ", " << plot::fixed(p.y, 2) << " m, "
+    << plot::fixed(rad2deg(p.theta), 1) << " deg)";
+  return s.str();
+}
+
+/// The name of a metre axis: "grid x (m)" when the grid is rotated.
+std::string axis_name(const GridGeometry& g, const char* axis) {
+  return std::string(g.yaw == 0.0 ? "" : "grid ") + axis + " (m)";
+}
+
+/// Tick label offsets: world coordinates when the grid is not rotated.
+cv::Point2d tick_offset(const GridGeometry& g) {
+  return g.yaw == 0.0 ? cv::Point2d(g.origin.x(), g.origin.y()) : cv::Point2d(0.0, 0.0);
+}
+
+}  // namespace
+
+cv::Vec3b grey(double g) {
+  const auto v = static_cast<std::uint8_t>(std::lround(g));
+  return {v, v, v};
+}
+
+cv::Vec3b blend(const cv::Vec3b& top, const cv::Vec3b& under, double alpha) {
+  cv::Vec3b out;
+  for (int k = 0; k < 3; ++k) {
+    out[k] = static_cast<std::uint8_t>(std::lround(alpha * top[k] + (1.0 - alpha) * under[k]));
+  }
+  return out;
+}
+
+cv::Mat canvas(plot::View& v, int right, int below, const std::string& caption) {
+  v.origin = {kLeft, kTop};
+  int width = kLeft + v.width() + right;
+  std::istringstream lines(caption);
+  for (std::string line; std::getline(lines, line);) {
+    width = std::max(width, plot::text_size(line, plot::kTickScale).width + 24);
+  }
+  return cv::Mat(kTop + v.height() + below, width, CV_8UC3, cv::Scalar(255, 255, 255));
+}
+
+void title(cv::Mat& img, const std::string& line1, const std::string& caption) {
+  plot::text(img, line1, {12, 24}, plot::kTitleScale, plot::kInk, 2);
+  std::istringstream lines(caption);
+  std::string line;
+  for (int y = 48; std::getline(lines, line); y += 20)
+    plot::text(img, line, {12, y}, plot::kTickScale);
+}
+
+std::vector<plot::LegendItem> pose_legend(const HeatmapMarks& marks) {
+  std::vector<plot::LegendItem> items;
+  items.push_back({[](cv::Mat& m, const cv::Point2d& p) { plot::estimate_marker(m, p, 0.0); },
+                   "estimate " + pose_text(marks.estimate)});
+  if (marks.truth) {
+    items.push_back({[](cv::Mat& m, const cv::Point2d& p) { plot::truth_marker(m, p, 0.0); },
+                     "truth " + pose_text(*marks.truth)});
+  }
+  return items;
+}
+
+cv::Mat legend_and_crop(cv::Mat& img, const std::vector<plot::LegendItem>& items,
+                        const cv::Rect& area) {
+  const int last =
+      plot::legend(img, items, 12, area.y + area.height + kAxisBelow + 20, img.cols - 8);
+  return crop_below(img, last);
+}
+
+void draw_hypotheses(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+                     const HeatmapMarks& marks) {
+  // Lowest ranked first, so that the best lie on top.
+  for (std::size_t k = marks.hypotheses.size(); k-- > 0;) {
+    const Pose2 p = g.to_grid_frame(marks.hypotheses[k].pose);
+    plot::hypothesis_marker(img, v.px(p.x, p.y), p.theta, static_cast<int>(k) + 1);
+  }
+}
+
+void draw_estimate_and_truth(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+                             const HeatmapMarks& marks) {
+  if (marks.truth) {
+    const Pose2 t = g.to_grid_frame(*marks.truth);
+    plot::truth_marker(img, v.px(t.x, t.y), t.theta);
+  }
+  const Pose2 e = g.to_grid_frame(marks.estimate);
+  plot::estimate_marker(img, v.px(e.x, e.y), e.theta);
+}
+
+void draw_scale_and_axes(cv::Mat& img, const plot::View& v, const GridGeometry& g) {
+  plot::scale_bar(img, v);
+  const cv::Point2d o = tick_offset(g);
+  plot::axes_m(img, v, o.x, o.y, axis_name(g, "x"), axis_name(g, "y"));
+}
+
+}  // namespace gridloc::cli::layout
