@@ -54,15 +54,15 @@ struct ScoreSlice {
 };
 
 /// The scores at the best heading, or their maximum over the headings of each cell.
-ScoreSlice score_slice(const ScoreVolume& v, bool max_over_headings) {
+ScoreSlice score_slice(const ScoreVolume& volume, bool max_over_headings) {
   ScoreSlice slice;
-  slice.scores.assign(static_cast<std::size_t>(v.nx) * v.ny, -infinity());
-  for (int t = 0; t < v.headings; ++t) {
-    if (!max_over_headings && t != v.best.it) continue;
-    for (int y = 0; y < v.ny; ++y) {
-      for (int x = 0; x < v.nx; ++x) {
-        double& s = slice.scores[static_cast<std::size_t>(y) * v.nx + x];
-        s = std::max(s, v.at(x, y, t));
+  slice.scores.assign(static_cast<std::size_t>(volume.nx) * volume.ny, -infinity());
+  for (int t = 0; t < volume.headings; ++t) {
+    if (!max_over_headings && t != volume.best.it) continue;
+    for (int y = 0; y < volume.ny; ++y) {
+      for (int x = 0; x < volume.nx; ++x) {
+        double& s = slice.scores[static_cast<std::size_t>(y) * volume.nx + x];
+        s = std::max(s, volume.at(x, y, t));
       }
     }
   }
@@ -77,16 +77,17 @@ struct WindowBox {
   double x0, x1, y0, y1;
 };
 
-WindowBox window_box(const ScoreVolume& v) {
-  const double res = v.resolution;
-  return {v.ix0 * res, (v.ix0 + v.nx) * res, v.iy0 * res, (v.iy0 + v.ny) * res};
+WindowBox window_box(const ScoreVolume& volume) {
+  const double res = volume.resolution;
+  return {volume.ix0 * res, (volume.ix0 + volume.nx) * res, volume.iy0 * res,
+          (volume.iy0 + volume.ny) * res};
 }
 
 /// The window's cells and a margin around them (about 60 % of the window, 0.5 to 1.5 m),
 /// the truth too, within the map.
-View score_view(const ScoreVolume& v, const WindowBox& w, const HeatmapMarks& marks) {
-  const GridGeometry& g = v.geometry;
-  const double res = v.resolution;
+View score_view(const ScoreVolume& volume, const WindowBox& w, const HeatmapMarks& marks) {
+  const GridGeometry& g = volume.geometry;
+  const double res = volume.resolution;
   View view;
   const double margin = std::clamp(0.6 * std::max(w.x1 - w.x0, w.y1 - w.y0), 0.5, 1.5);
   view.x0 = w.x0 - margin;
@@ -122,18 +123,18 @@ double map_grey(const OccupancyMap& map, const cv::Point2d& p) {
 
 /// Map in grey, the score in viridis over it (semi-transparent: walls show through).
 void paint_scores_on_map(cv::Mat& img, const View& view, const OccupancyMap& map,
-                         const ScoreVolume& v, const ScoreSlice& slice, const cv::Mat& lut) {
-  const double res = v.resolution;
+                         const ScoreVolume& volume, const ScoreSlice& slice, const cv::Mat& lut) {
+  const double res = volume.resolution;
   const double lo = slice.lo, hi = slice.hi;
   for (int r = 0; r < view.height(); ++r) {
     auto* row = img.ptr<cv::Vec3b>(view.origin.y + r) + view.origin.x;
     for (int c = 0; c < view.width(); ++c) {
       const cv::Point2d p = view.at(c, r);
       row[c] = grey(map_grey(map, p));
-      const int x = static_cast<int>(std::floor(p.x / res)) - v.ix0;
-      const int y = static_cast<int>(std::floor(p.y / res)) - v.iy0;
-      if (x < 0 || y < 0 || x >= v.nx || y >= v.ny) continue;
-      const double s = slice.scores[static_cast<std::size_t>(y) * v.nx + x];
+      const int x = static_cast<int>(std::floor(p.x / res)) - volume.ix0;
+      const int y = static_cast<int>(std::floor(p.y / res)) - volume.iy0;
+      if (x < 0 || y < 0 || x >= volume.nx || y >= volume.ny) continue;
+      const double s = slice.scores[static_cast<std::size_t>(y) * volume.nx + x];
       const int k = hi > lo ? static_cast<int>(std::lround(255.0 * (s - lo) / (hi - lo))) : 255;
       row[c] = blend(lut.at<cv::Vec3b>(k), row[c], kHeatAlpha);
     }
@@ -148,10 +149,12 @@ void draw_window(cv::Mat& img, const View& view, const WindowBox& w) {
 }
 
 /// The title of an x, y image.
-std::string score_xy_title(const ScoreVolume& v, bool max_over_headings) {
-  const double best_deg = rad2deg(v.theta0 + v.geometry.yaw + v.best.it * v.step_theta);
+std::string score_xy_title(const ScoreVolume& volume, bool max_over_headings) {
+  const double best_deg =
+      rad2deg(volume.theta0 + volume.geometry.yaw + volume.best.it * volume.step_theta);
   return max_over_headings
-             ? "Score S over x, y: maximum over the " + std::to_string(v.headings) + " headings"
+             ? "Score S over x, y: maximum over the " + std::to_string(volume.headings) +
+                   " headings"
              : "Score S over x, y at the best heading, " + plot::fixed(best_deg, 1) + " deg";
 }
 
@@ -178,16 +181,16 @@ std::vector<plot::LegendItem> score_xy_legend(const HeatmapMarks& marks) {
 const cv::Scalar kCurve(170, 90, 20);  // the curve of the best score per heading
 
 /// World heading (rad) of volume heading index `t` (fractions allowed).
-double world_heading(const ScoreVolume& v, double t) {
-  return v.theta0 + v.geometry.yaw + t * v.step_theta;
+double world_heading(const ScoreVolume& volume, double t) {
+  return volume.theta0 + volume.geometry.yaw + t * volume.step_theta;
 }
 
 /// The best score over x, y at each heading.
-std::vector<double> heading_curve(const ScoreVolume& v) {
-  std::vector<double> curve(static_cast<std::size_t>(v.headings), -infinity());
-  for (int t = 0; t < v.headings; ++t) {
-    for (int y = 0; y < v.ny; ++y) {
-      for (int x = 0; x < v.nx; ++x) curve[t] = std::max(curve[t], v.at(x, y, t));
+std::vector<double> heading_curve(const ScoreVolume& volume) {
+  std::vector<double> curve(static_cast<std::size_t>(volume.headings), -infinity());
+  for (int t = 0; t < volume.headings; ++t) {
+    for (int y = 0; y < volume.ny; ++y) {
+      for (int x = 0; x < volume.nx; ++x) curve[t] = std::max(curve[t], volume.at(x, y, t));
     }
   }
   return curve;
@@ -205,13 +208,14 @@ struct HeadingAxes {
 };
 
 /// The headings with a little padding, the curve's and the hypotheses' scores with 10 %.
-HeadingAxes heading_axes(const ScoreVolume& v, const std::vector<double>& curve,
+HeadingAxes heading_axes(const ScoreVolume& volume, const std::vector<double>& curve,
                          const HeatmapMarks& marks, const cv::Rect& area) {
   HeadingAxes axes;
   axes.area = area;
-  axes.centre = world_heading(v, 0.5 * (v.headings - 1));
-  double xlo = rad2deg(world_heading(v, 0)), xhi = rad2deg(world_heading(v, v.headings - 1));
-  const double xpad = std::max(0.02 * (xhi - xlo), 0.5 * rad2deg(v.step_theta));
+  axes.centre = world_heading(volume, 0.5 * (volume.headings - 1));
+  double xlo = rad2deg(world_heading(volume, 0)),
+         xhi = rad2deg(world_heading(volume, volume.headings - 1));
+  const double xpad = std::max(0.02 * (xhi - xlo), 0.5 * rad2deg(volume.step_theta));
   axes.xlo = xlo - xpad;
   axes.xhi = xhi + xpad;
   auto [lo_it, hi_it] = std::minmax_element(curve.begin(), curve.end());
@@ -283,13 +287,13 @@ void draw_heading_line(cv::Mat& img, const HeadingAxes& axes, double theta,
 }
 
 /// The curve, a dot per heading when they are far enough apart.
-void draw_heading_curve(cv::Mat& img, const HeadingAxes& axes, const ScoreVolume& v,
+void draw_heading_curve(cv::Mat& img, const HeadingAxes& axes, const ScoreVolume& volume,
                         const std::vector<double>& curve) {
   std::vector<cv::Point> pts;
-  for (int t = 0; t < v.headings; ++t)
-    pts.push_back(plot::sub({axes.fx(rad2deg(world_heading(v, t))), axes.fy(curve[t])}));
+  for (int t = 0; t < volume.headings; ++t)
+    pts.push_back(plot::sub({axes.fx(rad2deg(world_heading(volume, t))), axes.fy(curve[t])}));
   cv::polylines(img, pts, false, kCurve, 2, cv::LINE_AA, plot::kShift);
-  if (axes.area.width / std::max(1, v.headings) >= 6) {
+  if (axes.area.width / std::max(1, volume.headings) >= 6) {
     for (const cv::Point& p : pts)
       cv::circle(img, p, 3 << plot::kShift, kCurve, cv::FILLED, cv::LINE_AA, plot::kShift);
   }
