@@ -43,63 +43,65 @@ struct HeatmapArgs {
 
 /// NumPy .npy v1.0: magic, version, header length, a Python dict padded with spaces to a
 /// multiple of 64 bytes ending in '\n', then little-endian float32 in C order.
-void write_npy(const std::string& path, const ScoreVolume& v) {
+void write_npy(const std::string& path, const ScoreVolume& volume) {
   static_assert(std::endian::native == std::endian::little, "write_npy assumes little endian");
   std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                       std::to_string(v.headings) + ", " + std::to_string(v.ny) + ", " +
-                       std::to_string(v.nx) + "), }";
+                       std::to_string(volume.headings) + ", " + std::to_string(volume.ny) + ", " +
+                       std::to_string(volume.nx) + "), }";
   const std::size_t unpadded = 10 + header.size() + 1;
   header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
-  std::ofstream f(path, std::ios::binary);
-  if (!f) throw Error(path + ": cannot write the score volume");
+  std::ofstream file(path, std::ios::binary);
+  if (!file) throw Error(path + ": cannot write the score volume");
   const std::uint16_t length = static_cast<std::uint16_t>(header.size());
-  f.write("\x93NUMPY\x01\x00", 8);
-  f.put(static_cast<char>(length & 0xff));
-  f.put(static_cast<char>(length >> 8));
-  f << header;
-  std::vector<float> data(v.scores.begin(), v.scores.end());
-  f.write(reinterpret_cast<const char*>(data.data()),
-          static_cast<std::streamsize>(data.size() * sizeof(float)));
-  if (!f) throw Error(path + ": cannot write the score volume");
+  file.write("\x93NUMPY\x01\x00", 8);
+  file.put(static_cast<char>(length & 0xff));
+  file.put(static_cast<char>(length >> 8));
+  file << header;
+  std::vector<float> data(volume.scores.begin(), volume.scores.end());
+  file.write(reinterpret_cast<const char*>(data.data()),
+             static_cast<std::streamsize>(data.size() * sizeof(float)));
+  if (!file) throw Error(path + ": cannot write the score volume");
 }
 
-nlohmann::json volume_json(const ScoreVolume& v, const SearchWindow& window,
+/// volume.json: how scores.npy is laid out (shape, axes, the map grid), the best pose, the
+/// mass of each heading, the window and the files.
+nlohmann::json volume_json(const ScoreVolume& volume, const SearchWindow& window,
                            const nlohmann::json& files) {
-  const GridGeometry& g = v.geometry;
-  const Pose2 first = v.pose(0, 0, 0);
-  std::vector<double> mass(v.mass.begin(), v.mass.end());
+  const GridGeometry& grid = volume.geometry;
+  const Pose2 first = volume.pose(0, 0, 0);
+  std::vector<double> mass(volume.mass.begin(), volume.mass.end());
   return {{"file", "scores.npy"},
           {"dtype", "float32, little endian"},
-          {"shape", {v.headings, v.ny, v.nx}},
+          {"shape", {volume.headings, volume.ny, volume.nx}},
           {"axes", {"heading", "y", "x"}},
           {"index",
            "scores[t, y, x]: heading theta0 + t * step_theta, cell centre (x0, y0) + x * "
            "resolution * x_axis + y * resolution * y_axis (y grows northwards)"},
-          {"nx", v.nx},
-          {"ny", v.ny},
-          {"headings", v.headings},
-          {"resolution", v.resolution},
+          {"nx", volume.nx},
+          {"ny", volume.ny},
+          {"headings", volume.headings},
+          {"resolution", volume.resolution},
           {"x0", first.x},
           {"y0", first.y},
-          {"x_axis", {std::cos(g.yaw), std::sin(g.yaw)}},
-          {"y_axis", {-std::sin(g.yaw), std::cos(g.yaw)}},
-          {"theta0", v.theta0 + g.yaw},
-          {"step_theta", v.step_theta},
-          {"theta0_deg", rad2deg(v.theta0 + g.yaw)},
-          {"step_theta_deg", rad2deg(v.step_theta)},
-          {"map_cell0", {v.ix0, v.iy0}},
+          {"x_axis", {std::cos(grid.yaw), std::sin(grid.yaw)}},
+          {"y_axis", {-std::sin(grid.yaw), std::cos(grid.yaw)}},
+          {"theta0", volume.theta0 + grid.yaw},
+          {"step_theta", volume.step_theta},
+          {"theta0_deg", rad2deg(volume.theta0 + grid.yaw)},
+          {"step_theta_deg", rad2deg(volume.step_theta)},
+          {"map_cell0", {volume.ix0, volume.iy0}},
           {"map_grid",
-           {{"resolution", g.resolution},
-            {"origin", {g.origin.x(), g.origin.y()}},
-            {"yaw", g.yaw},
-            {"width", g.width},
-            {"height", g.height}}},
+           {{"resolution", grid.resolution},
+            {"origin", {grid.origin.x(), grid.origin.y()}},
+            {"yaw", grid.yaw},
+            {"width", grid.width},
+            {"height", grid.height}}},
           {"best",
-           {{"x", v.best.ix},
-            {"y", v.best.iy},
-            {"t", v.best.it},
-            {"score", v.best.score},
-            {"pose", to_json(v.pose(v.best.ix, v.best.iy, v.best.it))}}},
+           {{"x", volume.best.ix},
+            {"y", volume.best.iy},
+            {"t", volume.best.it},
+            {"score", volume.best.score},
+            {"pose", to_json(volume.pose(volume.best.ix, volume.best.iy, volume.best.it))}}},
           {"mass", mass},
           {"window",
            {{"center", to_json(window.center)},
@@ -111,121 +113,165 @@ nlohmann::json volume_json(const ScoreVolume& v, const SearchWindow& window,
 }
 
 /// Two lines under each image's title: what was matched, and where.
-std::string caption(const LocalizationArgs& a, const Observation& obs, const SearchWindow& w,
-                    const ScoreVolume& v, const Estimate& e) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s << fs::path(a.map).filename().string() << ", ";
-  if (obs.scan) {
-    s << "scan of " << obs.scan->ranges.size() << " beams (" << a.search.scan_model << " model, "
-      << a.global << " global grid)\n";
+std::string caption(const LocalizationArgs& args, const Observation& observation,
+                    const SearchWindow& window, const ScoreVolume& volume,
+                    const Estimate& estimate) {
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text << fs::path(args.map).filename().string() << ", ";
+  if (observation.scan) {
+    text << "scan of " << observation.scan->ranges.size() << " beams (" << args.search.scan_model
+         << " model, " << args.global << " global grid)\n";
   } else {
-    s << obs.ranges.size() << " sonar readings (" << a.local << " local grid, " << a.global
-      << " global grid, " << a.search.arc_rule << " arcs)\n";
+    text << observation.ranges.size() << " sonar readings (" << args.local << " local grid, "
+         << args.global << " global grid, " << args.search.arc_rule << " arcs)\n";
   }
-  if (a.whole_map) {
-    s << "whole map, every heading";
+  if (args.whole_map) {
+    text << "whole map, every heading";
   } else {
-    s << std::setprecision(2) << "window +-" << w.half_xy << " m, +-" << std::setprecision(0)
-      << rad2deg(w.half_theta) << " deg around the prior (" << std::setprecision(2) << w.center.x
-      << ", " << w.center.y << " m, " << std::setprecision(1) << rad2deg(w.center.theta) << " deg)";
+    text << std::setprecision(2) << "window +-" << window.half_xy << " m, +-"
+         << std::setprecision(0) << rad2deg(window.half_theta) << " deg around the prior ("
+         << std::setprecision(2) << window.center.x << ", " << window.center.y << " m, "
+         << std::setprecision(1) << rad2deg(window.center.theta) << " deg)";
   }
-  s << std::setprecision(2) << "; lattice " << v.resolution << " m x " << std::setprecision(1)
-    << rad2deg(v.step_theta) << " deg; best S " << std::setprecision(2) << e.score << " of "
-    << v.mass[static_cast<std::size_t>(v.best.it)] << " possible";
-  return s.str();
+  text << std::setprecision(2) << "; lattice " << volume.resolution << " m x "
+       << std::setprecision(1) << rad2deg(volume.step_theta) << " deg; best S "
+       << std::setprecision(2) << estimate.score << " of "
+       << volume.mass[static_cast<std::size_t>(volume.best.it)] << " possible";
+  return text.str();
 }
 
-void run(const HeatmapArgs& a) {
-  if (a.out.empty()) throw Error("--out: give the folder to write the heatmaps in");
-  std::optional<Pose2> truth;
-  if (!a.truth.empty()) truth = parse_pose(a.truth, "--truth");
-  Localization l = prepare_localization(a.inputs);
-  const CorrelationEstimator& estimator = *l.estimator;
-  const Observation& obs = l.observation;
-  const CorrelationOptions& o = estimator.options();
-  SearchWindow& window = l.window;
-  // The volume is exhaustive, so let a coarser heading step make a global one affordable.
-  if (a.inputs.whole_map && a.step_theta_given) window.step_theta = a.inputs.window.step_theta;
-  // Refuse a huge volume before allocating it (the estimator's own lattice, clipped to the map).
-  const Lattice lattice = estimator.lattice(obs, window);
+/// Refuses a huge volume before allocating it (the estimator's own lattice, clipped to the
+/// map): gridloc::Error with the count and what to change.
+void check_volume_size(const CorrelationEstimator& estimator, const Observation& observation,
+                       const SearchWindow& window) {
+  const Lattice lattice = estimator.lattice(observation, window);
   const long long nx = lattice.x1 - lattice.x0 + 1, ny = lattice.y1 - lattice.y0 + 1;
   const double poses = static_cast<double>(nx) * static_cast<double>(ny) * lattice.headings;
   if (poses > static_cast<double>(kMaxPoses)) {
-    std::ostringstream m;
-    m << "heatmap: the score volume would hold " << nx << " x " << ny << " cells x "
-      << lattice.headings << " headings = " << std::llround(poses) << " poses, more than "
-      << kMaxPoses << "; use a smaller --window-xy or --window-theta, or a larger --step-theta";
-    throw Error(m.str());
+    std::ostringstream message;
+    message << "heatmap: the score volume would hold " << nx << " x " << ny << " cells x "
+            << lattice.headings << " headings = " << std::llround(poses) << " poses, more than "
+            << kMaxPoses
+            << "; use a smaller --window-xy or --window-theta, or a larger --step-theta";
+    throw Error(message.str());
   }
+}
 
-  const Estimate e = estimator.estimate(obs, window);
-  const ScoreVolume v = estimator.score_volume(obs, window);
-
+/// The folder of --out, created if missing.
+fs::path output_folder(const std::string& out) {
   std::error_code ec;
-  fs::create_directories(a.out, ec);
-  if (!fs::is_directory(a.out)) throw Error("--out " + a.out + ": cannot create the folder");
-  const fs::path dir(a.out);
-  auto file = [&](const std::string& name) { return (dir / name).string(); };
+  fs::create_directories(out, ec);
+  if (!fs::is_directory(out)) throw Error("--out " + out + ": cannot create the folder");
+  return fs::path(out);
+}
 
-  HeatmapMarks marks;
-  marks.estimate = e.pose;
-  marks.hypotheses = e.alternatives;
-  marks.truth = truth;
-  marks.caption = caption(a.inputs, obs, window, v, e);
+/// The local grid at the refined pose and the map cell of its robot cell.
+struct LocalAtEstimate {
+  SparseLocalGrid grid;
+  Cell robot;
+};
 
-  // The local grid at the refined pose: its robot cell and the centre's offset in it.
-  const Pose2 p = v.geometry.to_grid_frame(e.pose);
-  const double res = v.resolution;
-  const Cell robot = v.geometry.cell_of(p.x, p.y);
+/// The local grid at the refined pose: its robot cell and the centre's offset in it.
+LocalAtEstimate local_at_estimate(const CorrelationEstimator& estimator,
+                                  const Observation& observation, const ScoreVolume& volume,
+                                  const Pose2& estimate) {
+  const CorrelationOptions& options = estimator.options();
+  const Pose2 p = volume.geometry.to_grid_frame(estimate);
+  const double res = volume.resolution;
+  const Cell robot = volume.geometry.cell_of(p.x, p.y);
   const Eigen::Vector2d centre(p.x - (robot.ix + 0.5) * res, p.y - (robot.iy + 0.5) * res);
-  const SparseLocalGrid local = obs.scan ? rasterize_scan(*obs.scan, p.theta, res, centre, o.scan)
-                                         : rasterize(estimator.ring(), obs.ranges, p.theta, res,
-                                                     o.local, centre, o.sonar, obs.rejected);
+  return {observation.scan ? rasterize_scan(*observation.scan, p.theta, res, centre, options.scan)
+                           : rasterize(estimator.ring(), observation.ranges, p.theta, res,
+                                       options.local, centre, options.sonar, observation.rejected),
+          robot};
+}
 
-  // volume.json names the files relative to its folder; stdout gives their paths.
-  const nlohmann::json names = {{"score_xy_best_theta", "score_xy_best_theta.png"},
-                                {"score_xy_max_theta", "score_xy_max_theta.png"},
-                                {"score_theta", "score_theta.png"},
-                                {"local_overlay", "local_overlay.png"},
-                                {"scores", "scores.npy"},
-                                {"volume", "volume.json"}};
-  nlohmann::json files;
-  for (const auto& [key, name] : names.items()) files[key] = file(name.get<std::string>());
+/// The files of a heatmap by key, relative to its folder (volume.json names them so).
+nlohmann::json file_names() {
+  return {{"score_xy_best_theta", "score_xy_best_theta.png"},
+          {"score_xy_max_theta", "score_xy_max_theta.png"},
+          {"score_theta", "score_theta.png"},
+          {"local_overlay", "local_overlay.png"},
+          {"scores", "scores.npy"},
+          {"volume", "volume.json"}};
+}
+
+/// Writes the four images, scores.npy and volume.json into `dir`.
+void write_heatmap_files(const fs::path& dir, const CorrelationEstimator& estimator,
+                         const ScoreVolume& volume, const SearchWindow& window,
+                         const LocalAtEstimate& local, const HeatmapMarks& marks) {
+  auto file = [&](const std::string& name) { return (dir / name).string(); };
   plot::write_png(file("score_xy_best_theta.png"),
-                  render_score_xy(v, estimator.map(), marks, false));
-  plot::write_png(file("score_xy_max_theta.png"), render_score_xy(v, estimator.map(), marks, true));
-  plot::write_png(file("score_theta.png"), render_score_theta(v, marks));
+                  render_score_xy(volume, estimator.map(), marks, false));
+  plot::write_png(file("score_xy_max_theta.png"),
+                  render_score_xy(volume, estimator.map(), marks, true));
+  plot::write_png(file("score_theta.png"), render_score_theta(volume, marks));
   plot::write_png(file("local_overlay.png"),
-                  render_local_overlay(estimator.level(0), v.geometry, local, robot,
+                  render_local_overlay(estimator.level(0), volume.geometry, local.grid, local.robot,
                                        estimator.ring().footprint, marks));
-  write_npy(file("scores.npy"), v);
-  {
-    std::ofstream f(file("volume.json"));
-    f << volume_json(v, window, names).dump(2) << "\n";
-    if (!f) throw Error(file("volume.json") + ": cannot write the volume description");
-  }
+  write_npy(file("scores.npy"), volume);
+  std::ofstream f(file("volume.json"));
+  f << volume_json(volume, window, file_names()).dump(2) << "\n";
+  if (!f) throw Error(file("volume.json") + ": cannot write the volume description");
+}
 
-  nlohmann::json j = to_json(e);
-  j["lattice"] = {{"pose", to_json(e.lattice_pose)}, {"score", e.score}};
-  j["volume"] = {{"shape", {v.headings, v.ny, v.nx}}, {"max_score", v.best.score}};
-  j["files"] = files;
-  std::cout << j.dump(2) << "\n";
+/// The output of `heatmap`: the estimate, its lattice pose, the volume's shape and best
+/// score, the files' paths.
+nlohmann::json heatmap_json(const Estimate& estimate, const ScoreVolume& volume,
+                            const fs::path& dir) {
+  const nlohmann::json names = file_names();
+  nlohmann::json files;
+  for (const auto& [key, name] : names.items()) {
+    files[key] = (dir / name.get<std::string>()).string();
+  }
+  nlohmann::json out = to_json(estimate);
+  out["lattice"] = {{"pose", to_json(estimate.lattice_pose)}, {"score", estimate.score}};
+  out["volume"] = {{"shape", {volume.headings, volume.ny, volume.nx}},
+                   {"max_score", volume.best.score}};
+  out["files"] = files;
+  return out;
+}
+
+void run(const HeatmapArgs& args) {
+  if (args.out.empty()) throw Error("--out: give the folder to write the heatmaps in");
+  std::optional<Pose2> truth;
+  if (!args.truth.empty()) truth = parse_pose(args.truth, "--truth");
+  Localization localization = prepare_localization(args.inputs);
+  const CorrelationEstimator& estimator = *localization.estimator;
+  const Observation& observation = localization.observation;
+  SearchWindow& window = localization.window;
+  // The volume is exhaustive, so let a coarser heading step make a global one affordable.
+  if (args.inputs.whole_map && args.step_theta_given) {
+    window.step_theta = args.inputs.window.step_theta;
+  }
+  check_volume_size(estimator, observation, window);
+
+  const Estimate estimate = estimator.estimate(observation, window);
+  const ScoreVolume volume = estimator.score_volume(observation, window);
+  const fs::path dir = output_folder(args.out);
+  const HeatmapMarks marks{estimate.pose, estimate.alternatives, truth,
+                           caption(args.inputs, observation, window, volume, estimate)};
+  write_heatmap_files(dir, estimator, volume, window,
+                      local_at_estimate(estimator, observation, volume, estimate.pose), marks);
+
+  std::cout << heatmap_json(estimate, volume, dir).dump(2) << "\n";
 }
 
 }  // namespace
 
 void add_heatmap(CLI::App& app) {
-  auto a = std::make_shared<HeatmapArgs>();
+  auto args = std::make_shared<HeatmapArgs>();
   auto* cmd = app.add_subcommand(
       "heatmap", "Score volume of a localization as images (PNG) and a NumPy file, for tuning");
-  cmd->add_option("--out", a->out, "folder for the images and files (created if missing)")
+  cmd->add_option("--out", args->out, "folder for the images and files (created if missing)")
       ->required();
-  cmd->add_option("--truth", a->truth, "true pose x,y,theta (m, m, rad), drawn when given");
-  a->inputs.add_to(cmd, "no prior: the whole map and every heading (at --step-theta when given)");
-  cmd->callback([a, cmd] {
-    a->step_theta_given = cmd->count("--step-theta") > 0;
-    run(*a);
+  cmd->add_option("--truth", args->truth, "true pose x,y,theta (m, m, rad), drawn when given");
+  args->inputs.add_to(cmd,
+                      "no prior: the whole map and every heading (at --step-theta when given)");
+  cmd->callback([args, cmd] {
+    args->step_theta_given = cmd->count("--step-theta") > 0;
+    run(*args);
   });
 }
 
