@@ -22,10 +22,10 @@ struct DemoArgs {
   OctomapArgs octomap;
 };
 
-void run(const DemoArgs& a) {
-  const OccupancyMap map = load_map(a.map, a.octomap.slice);
-  const SonarRing ring = load_sonar_ring(a.ring);
-  Rng rng(a.seed);
+void run(const DemoArgs& args) {
+  const OccupancyMap map = load_map(args.map, args.octomap.slice);
+  const SonarRing ring = load_sonar_ring(args.ring);
+  Rng rng(args.seed);
   const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
   const auto ranges = simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()));
   SearchWindow window;
@@ -34,59 +34,61 @@ void run(const DemoArgs& a) {
       truth.y + rng.uniform(-window.half_xy, window.half_xy),
       normalize_angle(truth.theta + rng.uniform(-window.half_theta, window.half_theta))};
   const CorrelationEstimator estimator(map, ring);
-  const Estimate e = estimator.estimate({ranges}, window);
-  const double dp = std::hypot(e.pose.x - truth.x, e.pose.y - truth.y);
-  const double dt = rad2deg(std::abs(normalize_angle(e.pose.theta - truth.theta)));
-  const bool success = dp <= 0.10 && dt <= 7.0;
+  const Estimate estimate = estimator.estimate({ranges}, window);
+  const double position_error_m = std::hypot(estimate.pose.x - truth.x, estimate.pose.y - truth.y);
+  const double heading_error_deg =
+      rad2deg(std::abs(normalize_angle(estimate.pose.theta - truth.theta)));
+  const bool success = position_error_m <= 0.10 && heading_error_deg <= 7.0;
 
-  if (a.json) {
-    nlohmann::json j = {{"map", a.map},
-                        {"ring", ring.name},
-                        {"truth", to_json(truth)},
-                        {"prior", to_json(window.center)},
-                        {"readings_m", ranges},
-                        {"estimate", to_json(e)},
-                        {"position_error_m", dp},
-                        {"heading_error_deg", dt},
-                        {"success", success},
-                        {"elapsed_ms", e.stats.elapsed_ms}};
-    std::cout << j.dump(2) << "\n";
+  if (args.json) {
+    nlohmann::json out = {{"map", args.map},
+                          {"ring", ring.name},
+                          {"truth", to_json(truth)},
+                          {"prior", to_json(window.center)},
+                          {"readings_m", ranges},
+                          {"estimate", to_json(estimate)},
+                          {"position_error_m", position_error_m},
+                          {"heading_error_deg", heading_error_deg},
+                          {"success", success},
+                          {"elapsed_ms", estimate.stats.elapsed_ms}};
+    std::cout << out.dump(2) << "\n";
     return;
   }
   auto line = [](const char* label, const Pose2& p) {
     std::printf("%-9s x = %6.3f m   y = %6.3f m   theta = %7.2f deg\n", label, p.x, p.y,
                 rad2deg(p.theta));
   };
-  std::printf("gridloc demo: map %s, ring '%s' (%zu sonars), seed %llu\n", a.map.c_str(),
-              ring.name.c_str(), ring.sonars.size(), static_cast<unsigned long long>(a.seed));
+  std::printf("gridloc demo: map %s, ring '%s' (%zu sonars), seed %llu\n", args.map.c_str(),
+              ring.name.c_str(), ring.sonars.size(), static_cast<unsigned long long>(args.seed));
   line("truth", truth);
   line("prior", window.center);
-  line("estimate", e.pose);
-  std::printf("error     %.3f m, %.2f deg  -> %s (success: <= 0.10 m and <= 7 deg)\n", dp, dt,
-              success ? "success" : "FAILURE");
-  std::printf("score     %.3f (normalized %.3f), confidence %.2f -> %s\n", e.score,
-              e.normalized_score, e.confidence, to_string(e.verdict).c_str());
+  line("estimate", estimate.pose);
+  std::printf("error     %.3f m, %.2f deg  -> %s (success: <= 0.10 m and <= 7 deg)\n",
+              position_error_m, heading_error_deg, success ? "success" : "FAILURE");
+  std::printf("score     %.3f (normalized %.3f), confidence %.2f -> %s\n", estimate.score,
+              estimate.normalized_score, estimate.confidence, to_string(estimate.verdict).c_str());
   const bool multires = estimator.options().strategy == SearchStrategy::Multires;
   std::printf("time      %.2f ms (%s search, %lld poses scored%s; window +-%.2f m, +-%.0f deg)\n",
-              e.stats.elapsed_ms, to_string(estimator.options().strategy).c_str(),
-              e.stats.poses_scored,
-              multires ? "" : (e.stats.proven_optimal ? ", proven optimal" : ", not proven"),
+              estimate.stats.elapsed_ms, to_string(estimator.options().strategy).c_str(),
+              estimate.stats.poses_scored,
+              multires ? "" : (estimate.stats.proven_optimal ? ", proven optimal" : ", not proven"),
               window.half_xy, rad2deg(window.half_theta));
 }
 
 }  // namespace
 
 void add_demo(CLI::App& app) {
-  auto a = std::make_shared<DemoArgs>();
-  a->map = data_dir() + "/room_furnished.yaml";
-  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  auto args = std::make_shared<DemoArgs>();
+  args->map = data_dir() + "/room_furnished.yaml";
+  args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("demo", "Simulate, perturb the prior, localize, report");
-  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot)")->capture_default_str();
-  a->octomap.add_to(cmd);
-  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--seed", a->seed, "seed of pose, prior and noise")->capture_default_str();
-  cmd->add_flag("--json", a->json, "print JSON instead of text");
-  cmd->callback([a] { run(*a); });
+  cmd->add_option("--map", args->map, "map_server YAML (or OctoMap .bt/.ot)")
+      ->capture_default_str();
+  args->octomap.add_to(cmd);
+  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "seed of pose, prior and noise")->capture_default_str();
+  cmd->add_flag("--json", args->json, "print JSON instead of text");
+  cmd->callback([args] { run(*args); });
 }
 
 }  // namespace gridloc::cli

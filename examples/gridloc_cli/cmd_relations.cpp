@@ -20,63 +20,63 @@ struct RelationsArgs {
   bool json = false;
 };
 
-void run(const RelationsArgs& a) {
-  RelationEvalOptions options = a.options;
-  options.matcher = parse_estimator_kind(a.estimator);
-  const CarmenLog log = load_carmen_log(a.log);
-  const auto relations = load_slam_relations(a.relations);
-  const auto pairs = pair_relations(relations, log, a.time_offset, a.tolerance);
-  const RelationEvalReport r = evaluate_relations(log, pairs, options);
-  const nlohmann::json j = {
-      {"estimator", a.estimator},
+void run(const RelationsArgs& args) {
+  RelationEvalOptions options = args.options;
+  options.matcher = parse_estimator_kind(args.estimator);
+  const CarmenLog log = load_carmen_log(args.log);
+  const auto relations = load_slam_relations(args.relations);
+  const auto pairs = pair_relations(relations, log, args.time_offset, args.tolerance);
+  const RelationEvalReport report = evaluate_relations(log, pairs, options);
+  const nlohmann::json out = {
+      {"estimator", args.estimator},
       {"relations", relations.size()},
-      {"pairs", r.pairs},
+      {"pairs", report.pairs},
       {"translation_error_m",
-       {{"mean", r.translation_error_m.mean}, {"std", r.translation_error_m.std}}},
+       {{"mean", report.translation_error_m.mean}, {"std", report.translation_error_m.std}}},
       {"rotation_error_deg",
-       {{"mean", r.rotation_error_deg.mean}, {"std", r.rotation_error_deg.std}}},
-      {"failures", r.failures},
-      {"not_converged", r.not_converged},
-      {"median_ms", r.median_ms},
-      {"seed", a.options.seed}};
-  if (a.json) {
-    std::cout << j.dump(2) << "\n";
+       {{"mean", report.rotation_error_deg.mean}, {"std", report.rotation_error_deg.std}}},
+      {"failures", report.failures},
+      {"not_converged", report.not_converged},
+      {"median_ms", report.median_ms},
+      {"seed", args.options.seed}};
+  if (args.json) {
+    std::cout << out.dump(2) << "\n";
     return;
   }
   std::printf(
       "%s on %d relation pairs (of %zu relations): translation error %.4f +- %.4f m, "
       "rotation error %.3f +- %.3f deg, %d failures, %.2f ms per match\n",
-      a.estimator.c_str(), r.pairs, relations.size(), r.translation_error_m.mean,
-      r.translation_error_m.std, r.rotation_error_deg.mean, r.rotation_error_deg.std, r.failures,
-      r.median_ms);
+      args.estimator.c_str(), report.pairs, relations.size(), report.translation_error_m.mean,
+      report.translation_error_m.std, report.rotation_error_deg.mean, report.rotation_error_deg.std,
+      report.failures, report.median_ms);
 }
 
 }  // namespace
 
 void add_relations(CLI::App& app) {
-  auto a = std::make_shared<RelationsArgs>();
+  auto args = std::make_shared<RelationsArgs>();
   auto* cmd = app.add_subcommand(
       "relations", "Match the scan pairs of a CARMEN log named by SLAM benchmark relations");
-  cmd->add_option("--log", a->log, "CARMEN log (FLASER / ROBOTLASER1 lines)")->required();
-  cmd->add_option("--relations", a->relations, "relations file: t1 t2 x y z roll pitch yaw")
+  cmd->add_option("--log", args->log, "CARMEN log (FLASER / ROBOTLASER1 lines)")->required();
+  cmd->add_option("--relations", args->relations, "relations file: t1 t2 x y z roll pitch yaw")
       ->required();
-  cmd->add_option("--estimator", a->estimator,
+  cmd->add_option("--estimator", args->estimator,
                   "icp (seed 004's robust ICP) | correlation (the search on the reference "
                   "scan's map) | correlation+icp")
       ->capture_default_str();
-  cmd->add_option("--time-offset", a->time_offset,
+  cmd->add_option("--time-offset", args->time_offset,
                   "added to the log's times to reach the relations' (Intel: 976052857.337311)")
       ->capture_default_str();
-  cmd->add_option("--tolerance", a->tolerance, "time matching tolerance (s)")
+  cmd->add_option("--tolerance", args->tolerance, "time matching tolerance (s)")
       ->capture_default_str();
-  cmd->add_option("--seed", a->options.seed, "seed of the prior's noise")->capture_default_str();
-  cmd->add_option("--prior-noise-xy", a->options.prior_noise_xy,
+  cmd->add_option("--seed", args->options.seed, "seed of the prior's noise")->capture_default_str();
+  cmd->add_option("--prior-noise-xy", args->options.prior_noise_xy,
                   "uniform noise added to the logged motion's x and y (m)")
       ->capture_default_str();
-  cmd->add_option("--prior-noise-theta", a->options.prior_noise_theta,
+  cmd->add_option("--prior-noise-theta", args->options.prior_noise_theta,
                   "uniform noise added to the logged motion's heading (rad)")
       ->capture_default_str();
-  IcpOptions& icp = a->options.icp;
+  IcpOptions& icp = args->options.icp;
   cmd->add_option("--icp-gap", icp.gap_m, "ICP segmentation gap (m)")->capture_default_str();
   cmd->add_option("--icp-min-segment", icp.min_segment_points,
                   "ICP: segments with fewer points give no matching points")
@@ -89,7 +89,7 @@ void add_relations(CLI::App& app) {
   cmd->add_option("--icp-converged", icp.converged_xy_m,
                   "ICP: stop when an update moves less than this (m; the same in rad turns)")
       // each() runs before the value is stored: parse it here for the heading threshold.
-      ->each([&icp](const std::string& v) { icp.converged_theta_rad = std::stod(v); })
+      ->each([&icp](const std::string& value) { icp.converged_theta_rad = std::stod(value); })
       ->capture_default_str();
   cmd->add_option("--icp-breakpoint-angle", icp.breakpoint_angle_rad,
                   "ICP: grazing angle of the range-adaptive gap (rad; 0: fixed gap)")
@@ -103,8 +103,8 @@ void add_relations(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--icp-max-iterations", icp.max_iterations, "ICP iteration limit")
       ->capture_default_str();
-  cmd->add_flag("--json", a->json, "print JSON");
-  cmd->callback([a] { run(*a); });
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->callback([args] { run(*args); });
 }
 
 }  // namespace gridloc::cli

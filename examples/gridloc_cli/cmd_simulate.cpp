@@ -21,66 +21,67 @@ struct SimulateArgs {
   OctomapArgs octomap;
 };
 
-void run(const SimulateArgs& a) {
-  const Pose2 pose = parse_pose(a.pose, "--pose");
-  SonarSimOptions o = a.sim;
-  if (a.realistic) o = SonarSimOptions::realistic(a.sim.seed);
-  if (a.firings < 1 || a.firings > 100) {
-    throw Error("--firings must lie in [1, 100], got " + std::to_string(a.firings));
+void run(const SimulateArgs& args) {
+  const Pose2 pose = parse_pose(args.pose, "--pose");
+  SonarSimOptions options = args.sim;
+  if (args.realistic) options = SonarSimOptions::realistic(args.sim.seed);
+  if (args.firings < 1 || args.firings > 100) {
+    throw Error("--firings must lie in [1, 100], got " + std::to_string(args.firings));
   }
-  const OccupancyMap map = load_map(a.map, a.octomap.slice);
-  const SonarRing ring = load_sonar_ring(a.ring);
+  const OccupancyMap map = load_map(args.map, args.octomap.slice);
+  const SonarRing ring = load_sonar_ring(args.ring);
   // Consecutive firings from the same pose draw their noise independently: the first from
   // --seed (what one firing would read), the others from seeds hashed from it and k, so
   // that neighbouring --seed values share no firing.
   std::vector<std::vector<double>> firings;
-  for (int k = 0; k < a.firings; ++k) {
-    SonarSimOptions firing = o;
+  for (int k = 0; k < args.firings; ++k) {
+    SonarSimOptions firing = options;
     if (k > 0)
-      firing.seed = Rng(o.seed ^ (0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(k))).next();
+      firing.seed =
+          Rng(options.seed ^ (0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(k))).next();
     firings.push_back(simulate_sonar(map, ring, pose, firing));
   }
-  nlohmann::json j = {{"pose", to_json(pose)}, {"ranges_m", firings.front()}};
-  if (a.firings > 1) j["firings_m"] = firings;
-  if (a.out.empty()) {
-    std::cout << j.dump(2) << "\n";
+  nlohmann::json out = {{"pose", to_json(pose)}, {"ranges_m", firings.front()}};
+  if (args.firings > 1) out["firings_m"] = firings;
+  if (args.out.empty()) {
+    std::cout << out.dump(2) << "\n";
     return;
   }
-  std::ofstream f(a.out);
-  if (!f) throw Error(a.out + ": cannot write the readings file");
-  f << j.dump(2) << "\n";
+  std::ofstream file(args.out);
+  if (!file) throw Error(args.out + ": cannot write the readings file");
+  file << out.dump(2) << "\n";
 }
 
 }  // namespace
 
 void add_simulate(CLI::App& app) {
-  auto a = std::make_shared<SimulateArgs>();
-  a->ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  auto args = std::make_shared<SimulateArgs>();
+  args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("simulate", "Simulate sonar readings at a pose; prints JSON");
-  cmd->add_option("--map", a->map, "map_server YAML (or OctoMap .bt/.ot)")->required();
-  a->octomap.add_to(cmd);
-  cmd->add_option("--ring", a->ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--pose", a->pose, "robot pose x,y,theta (m, m, rad)")->required();
-  cmd->add_option("--out", a->out, "write the readings here instead of stdout");
-  cmd->add_option("--seed", a->sim.seed, "noise seed")->capture_default_str();
-  cmd->add_option("--sigma", a->sim.range_sigma_m, "Gaussian range noise (m)")
+  cmd->add_option("--map", args->map, "map_server YAML (or OctoMap .bt/.ot)")->required();
+  args->octomap.add_to(cmd);
+  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--pose", args->pose, "robot pose x,y,theta (m, m, rad)")->required();
+  cmd->add_option("--out", args->out, "write the readings here instead of stdout");
+  cmd->add_option("--seed", args->sim.seed, "noise seed")->capture_default_str();
+  cmd->add_option("--sigma", args->sim.range_sigma_m, "Gaussian range noise (m)")
       ->capture_default_str();
-  cmd->add_option("--sigma-frac", a->sim.range_sigma_frac, "range noise, fraction of the range")
+  cmd->add_option("--sigma-frac", args->sim.range_sigma_frac, "range noise, fraction of the range")
       ->capture_default_str();
-  cmd->add_option("--dropout", a->sim.dropout_prob, "probability of no echo")
+  cmd->add_option("--dropout", args->sim.dropout_prob, "probability of no echo")
       ->capture_default_str();
-  cmd->add_option("--specular-deg", a->sim.specular_incidence_deg,
+  cmd->add_option("--specular-deg", args->sim.specular_incidence_deg,
                   "no echo beyond this incidence angle (90 = off)")
       ->capture_default_str();
-  cmd->add_option("--crosstalk", a->sim.crosstalk_prob, "probability of a wrong short echo")
+  cmd->add_option("--crosstalk", args->sim.crosstalk_prob, "probability of a wrong short echo")
       ->capture_default_str();
-  cmd->add_option("--firings", a->firings,
+  cmd->add_option("--firings", args->firings,
                   "consecutive firings from the pose (> 1: written as firings_m, which "
                   "localize filters for crosstalk)")
       ->capture_default_str();
-  cmd->add_flag("--realistic", a->realistic,
+  cmd->add_flag("--realistic", args->realistic,
                 "use the evaluation's realistic noise (overrides the noise options)");
-  cmd->callback([a] { run(*a); });
+  cmd->callback([args] { run(*args); });
 }
 
 }  // namespace gridloc::cli

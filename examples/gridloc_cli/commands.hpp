@@ -16,9 +16,9 @@ void add_heatmap(CLI::App& app);
 void add_hallway(CLI::App& app);
 void add_sectors(CLI::App& app);
 
-nlohmann::json to_json(const Pose2& p);
+nlohmann::json to_json(const Pose2& pose);
 /// A number, or null when it is NaN (an AUROC without failures, a rate of nothing).
-nlohmann::json number_or_null(double v);
-nlohmann::json to_json(const Estimate& e);
+nlohmann::json number_or_null(double value);
+nlohmann::json to_json(const Estimate& estimate);
 
 }  // namespace gridloc::cli

@@ -5,51 +5,52 @@
 
 namespace gridloc::cli {
 
-nlohmann::json number_or_null(double v) {
-  return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
+nlohmann::json number_or_null(double value) {
+  return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
 }
 
-nlohmann::json to_json(const Pose2& p) {
-  return {{"x", p.x}, {"y", p.y}, {"theta", p.theta}};
+nlohmann::json to_json(const Pose2& pose) {
+  return {{"x", pose.x}, {"y", pose.y}, {"theta", pose.theta}};
 }
 
-nlohmann::json to_json(const Estimate& e) {
+nlohmann::json to_json(const Estimate& estimate) {
   nlohmann::json alternatives = nlohmann::json::array();
-  for (const auto& h : e.alternatives) {
-    alternatives.push_back({{"pose", to_json(h.pose)}, {"score", h.score}});
+  for (const auto& hypothesis : estimate.alternatives) {
+    alternatives.push_back({{"pose", to_json(hypothesis.pose)}, {"score", hypothesis.score}});
   }
   nlohmann::json covariance = nlohmann::json::array();
   for (int r = 0; r < 3; ++r) {
-    covariance.push_back({e.covariance(r, 0), e.covariance(r, 1), e.covariance(r, 2)});
+    covariance.push_back(
+        {estimate.covariance(r, 0), estimate.covariance(r, 1), estimate.covariance(r, 2)});
   }
-  return {
-      {"pose", to_json(e.pose)},
-      {"theta_deg", rad2deg(e.pose.theta)},
-      {"score", e.score},
-      {"normalized_score", e.normalized_score},
-      {"second_score", e.second_score},
-      {"confidence", e.confidence},
-      {"confidence_parts",
-       {{"fit", e.confidence_parts.fit},
-        {"agreement", e.confidence_parts.agreement},
-        {"distinctness", e.confidence_parts.distinctness},
-        {"sharpness", e.confidence_parts.sharpness}}},
-      {"ambiguous", e.ambiguous},
-      {"verdict", to_string(e.verdict)},
-      {"on_window_edge", e.on_window_edge},
-      {"alternatives", alternatives},
-      {"covariance", covariance},  // x, y, theta (m^2, m rad, rad^2), world frame
-      {"std",
-       {{"x", std::sqrt(e.covariance(0, 0))},
-        {"y", std::sqrt(e.covariance(1, 1))},
-        {"theta", std::sqrt(e.covariance(2, 2))}}},
-      {"stats",
-       {{"poses_scored", e.stats.poses_scored},
-        {"cells_scored", e.stats.cells_scored},
-        {"levels", e.stats.levels},
-        {"proven_optimal", e.stats.proven_optimal},
-        {"upper_bound", std::isnan(e.stats.upper_bound) ? nlohmann::json(nullptr)
-                                                        : nlohmann::json(e.stats.upper_bound)}}}};
+  return {{"pose", to_json(estimate.pose)},
+          {"theta_deg", rad2deg(estimate.pose.theta)},
+          {"score", estimate.score},
+          {"normalized_score", estimate.normalized_score},
+          {"second_score", estimate.second_score},
+          {"confidence", estimate.confidence},
+          {"confidence_parts",
+           {{"fit", estimate.confidence_parts.fit},
+            {"agreement", estimate.confidence_parts.agreement},
+            {"distinctness", estimate.confidence_parts.distinctness},
+            {"sharpness", estimate.confidence_parts.sharpness}}},
+          {"ambiguous", estimate.ambiguous},
+          {"verdict", to_string(estimate.verdict)},
+          {"on_window_edge", estimate.on_window_edge},
+          {"alternatives", alternatives},
+          {"covariance", covariance},  // x, y, theta (m^2, m rad, rad^2), world frame
+          {"std",
+           {{"x", std::sqrt(estimate.covariance(0, 0))},
+            {"y", std::sqrt(estimate.covariance(1, 1))},
+            {"theta", std::sqrt(estimate.covariance(2, 2))}}},
+          {"stats",
+           {{"poses_scored", estimate.stats.poses_scored},
+            {"cells_scored", estimate.stats.cells_scored},
+            {"levels", estimate.stats.levels},
+            {"proven_optimal", estimate.stats.proven_optimal},
+            {"upper_bound", std::isnan(estimate.stats.upper_bound)
+                                ? nlohmann::json(nullptr)
+                                : nlohmann::json(estimate.stats.upper_bound)}}}};
 }
 
 }  // namespace gridloc::cli

@@ -34,50 +34,52 @@ void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
   search.add_to(cmd);
 }
 
-Localization prepare_localization(const LocalizationArgs& a) {
+Localization prepare_localization(const LocalizationArgs& args) {
   using clock = std::chrono::steady_clock;
-  if (a.whole_map == !a.prior.empty()) throw Error("give either --prior x,y,theta or --global");
-  if (a.readings.empty() == a.scan.empty()) {
+  if (args.whole_map == !args.prior.empty())
+    throw Error("give either --prior x,y,theta or --global");
+  if (args.readings.empty() == args.scan.empty()) {
     throw Error("give either --readings (sonar ring) or --scan (laser/IR scan CSV)");
   }
-  Localization l;
+  Localization localization;
   std::vector<std::vector<double>> firings;
-  if (a.scan.empty()) {
-    firings = load_firings(a.readings);
-    l.firings = static_cast<int>(firings.size());
-    l.observation.ranges = firings.front();
+  if (args.scan.empty()) {
+    firings = load_firings(args.readings);
+    localization.firings = static_cast<int>(firings.size());
+    localization.observation.ranges = firings.front();
   } else {
-    l.observation.scan = load_scan_csv(a.scan, a.max_range);
+    localization.observation.scan = load_scan_csv(args.scan, args.max_range);
   }
   const auto t0 = clock::now();
-  CorrelationOptions o;
-  o.local = parse_local(a.local);
-  o.global = parse_global(a.global);
-  a.search.apply(o);
-  o.resolution = a.window.step_xy;
-  o.levels = a.levels;
+  CorrelationOptions options;
+  options.local = parse_local(args.local);
+  options.global = parse_global(args.global);
+  args.search.apply(options);
+  options.resolution = args.window.step_xy;
+  options.levels = args.levels;
   // A scan needs no ring: the padding covers its max range instead.
-  o.reach_m = l.observation.scan ? a.max_range : 0.0;
-  OccupancyMap map = load_map(a.map, a.octomap.slice);
-  if (l.observation.scan) {
-    l.estimator = std::make_unique<CorrelationEstimator>(std::move(map), o);
+  options.reach_m = localization.observation.scan ? args.max_range : 0.0;
+  OccupancyMap map = load_map(args.map, args.octomap.slice);
+  if (localization.observation.scan) {
+    localization.estimator = std::make_unique<CorrelationEstimator>(std::move(map), options);
   } else {
-    SonarRing ring = load_sonar_ring(a.ring);
+    SonarRing ring = load_sonar_ring(args.ring);
     if (firings.size() > 1) {  // consecutive firings: keep the echoes they repeat
-      FilteredReadings f = filter_echoes(ring, firings);
-      l.observation.ranges = std::move(f.ranges);
-      l.observation.rejected = std::move(f.rejected);
+      FilteredReadings filtered = filter_echoes(ring, firings);
+      localization.observation.ranges = std::move(filtered.ranges);
+      localization.observation.rejected = std::move(filtered.rejected);
     }
-    l.estimator = std::make_unique<CorrelationEstimator>(std::move(map), std::move(ring), o);
+    localization.estimator =
+        std::make_unique<CorrelationEstimator>(std::move(map), std::move(ring), options);
   }
-  l.precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
-  l.window = a.window;
-  if (a.whole_map) {
-    l.window = l.estimator->global_window(l.observation);
+  localization.precompute_ms = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
+  localization.window = args.window;
+  if (args.whole_map) {
+    localization.window = localization.estimator->global_window(localization.observation);
   } else {
-    l.window.center = parse_pose(a.prior, "--prior");
+    localization.window.center = parse_pose(args.prior, "--prior");
   }
-  return l;
+  return localization;
 }
 
 }  // namespace gridloc::cli

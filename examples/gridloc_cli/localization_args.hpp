@@ -40,6 +40,6 @@ struct Localization {
 /// naming the option otherwise), loads the inputs and builds the estimator. A readings file
 /// with several firings (firings_m) goes through the echo filter (filter_echoes): its
 /// rejected sonars are in observation.rejected.
-Localization prepare_localization(const LocalizationArgs& a);
+Localization prepare_localization(const LocalizationArgs& args);
 
 }  // namespace gridloc::cli

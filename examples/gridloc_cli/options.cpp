@@ -13,60 +13,60 @@
 namespace gridloc::cli {
 
 Pose2 parse_pose(const std::string& text, const std::string& what) {
-  std::vector<double> v;
-  std::stringstream ss(text);
+  std::vector<double> values;
+  std::stringstream stream(text);
   std::string item;
-  while (std::getline(ss, item, ',')) {
+  while (std::getline(stream, item, ',')) {
     try {
       std::size_t used = 0;
-      v.push_back(std::stod(item, &used));
+      values.push_back(std::stod(item, &used));
       if (used != item.size()) throw std::invalid_argument(item);
     } catch (const std::exception&) {
       throw Error(what + ": '" + text + "' is not x,y,theta (numbers)");
     }
   }
-  if (v.size() != 3) throw Error(what + ": '" + text + "' must be three numbers x,y,theta");
-  for (double d : v) {
-    if (!std::isfinite(d)) throw Error(what + ": '" + text + "' must be finite");
+  if (values.size() != 3) throw Error(what + ": '" + text + "' must be three numbers x,y,theta");
+  for (double value : values) {
+    if (!std::isfinite(value)) throw Error(what + ": '" + text + "' must be finite");
   }
-  return {v[0], v[1], v[2]};
+  return {values[0], values[1], values[2]};
 }
 
-LocalModel parse_local(const std::string& s) {
-  if (s == "oriented") return LocalModel::Oriented;
-  if (s == "turned") return LocalModel::Turned;
-  throw Error("--local must be oriented or turned, not '" + s + "'");
+LocalModel parse_local(const std::string& text) {
+  if (text == "oriented") return LocalModel::Oriented;
+  if (text == "turned") return LocalModel::Turned;
+  throw Error("--local must be oriented or turned, not '" + text + "'");
 }
 
-GlobalModel parse_global(const std::string& s) {
-  if (s == "thinned") return GlobalModel::Thinned;
-  if (s == "raw") return GlobalModel::Raw;
-  throw Error("--global-grid must be thinned or raw, not '" + s + "'");
+GlobalModel parse_global(const std::string& text) {
+  if (text == "thinned") return GlobalModel::Thinned;
+  if (text == "raw") return GlobalModel::Raw;
+  throw Error("--global-grid must be thinned or raw, not '" + text + "'");
 }
 
-SearchStrategy parse_strategy(const std::string& s) {
-  for (SearchStrategy v :
+SearchStrategy parse_strategy(const std::string& text) {
+  for (SearchStrategy strategy :
        {SearchStrategy::BranchAndBound, SearchStrategy::Exhaustive, SearchStrategy::Multires}) {
-    if (s == to_string(v)) return v;
+    if (text == to_string(strategy)) return strategy;
   }
-  throw Error("--strategy must be bnb, exhaustive or multires, not '" + s + "'");
+  throw Error("--strategy must be bnb, exhaustive or multires, not '" + text + "'");
 }
 
-ArcRule parse_arc_rule(const std::string& s) {
-  if (s == "neutral") return ArcRule::Neutral;
-  if (s == "signed") return ArcRule::Signed;
-  throw Error("--arc-rule must be neutral or signed, not '" + s + "'");
+ArcRule parse_arc_rule(const std::string& text) {
+  if (text == "neutral") return ArcRule::Neutral;
+  if (text == "signed") return ArcRule::Signed;
+  throw Error("--arc-rule must be neutral or signed, not '" + text + "'");
 }
 
-std::string to_string(ArcRule r) {
-  return r == ArcRule::Neutral ? "neutral" : "signed";
+std::string to_string(ArcRule rule) {
+  return rule == ArcRule::Neutral ? "neutral" : "signed";
 }
 
-ScanModel parse_scan_model(const std::string& s) {
-  for (ScanModel v : {ScanModel::Hits, ScanModel::Samples, ScanModel::Rays}) {
-    if (s == to_string(v)) return v;
+ScanModel parse_scan_model(const std::string& text) {
+  for (ScanModel model : {ScanModel::Hits, ScanModel::Samples, ScanModel::Rays}) {
+    if (text == to_string(model)) return model;
   }
-  throw Error("--scan-model must be hits, samples or rays, not '" + s + "'");
+  throw Error("--scan-model must be hits, samples or rays, not '" + text + "'");
 }
 
 double check_arc_depth(double cells) {
@@ -112,31 +112,32 @@ void SearchArgs::add_to(CLI::App* cmd) {
                 "confidence is then optimistic)");
 }
 
-void SearchArgs::apply(CorrelationOptions& o) const {
-  o.strategy = parse_strategy(strategy);
-  o.arc_rule = parse_arc_rule(arc_rule);
-  o.sonar.arc_depth_cells = check_arc_depth(arc_depth);
-  o.threads = threads;
-  o.scan.model = parse_scan_model(scan_model);
-  o.scan.free_samples = free_samples;
+void SearchArgs::apply(CorrelationOptions& options) const {
+  options.strategy = parse_strategy(strategy);
+  options.arc_rule = parse_arc_rule(arc_rule);
+  options.sonar.arc_depth_cells = check_arc_depth(arc_depth);
+  options.threads = threads;
+  options.scan.model = parse_scan_model(scan_model);
+  options.scan.free_samples = free_samples;
   if (!(budget_ms >= 0.0) || !std::isfinite(budget_ms)) {
     throw Error("--budget-ms must be a finite number >= 0, got " + std::to_string(budget_ms));
   }
-  if (o.strategy != SearchStrategy::BranchAndBound && (budget_ms > 0.0 || heading_intervals)) {
+  if (options.strategy != SearchStrategy::BranchAndBound &&
+      (budget_ms > 0.0 || heading_intervals)) {
     throw Error(std::string(budget_ms > 0.0 ? "--budget-ms" : "--heading-intervals") +
                 " needs --strategy bnb");
   }
-  o.budget_ms = budget_ms;
-  o.heading_intervals = heading_intervals;
-  o.second_peak = !no_second_peak;
+  options.budget_ms = budget_ms;
+  options.heading_intervals = heading_intervals;
+  options.second_peak = !no_second_peak;
   if (hypotheses < 1 || hypotheses > 100) {
     throw Error("--hypotheses must lie in [1, 100], got " + std::to_string(hypotheses));
   }
-  o.hypotheses = hypotheses;
+  options.hypotheses = hypotheses;
   if (covariance_cells < 0 || covariance_cells > 20) {
     throw Error("--covariance-cells must lie in [0, 20], got " + std::to_string(covariance_cells));
   }
-  o.covariance_cells = covariance_cells;
+  options.covariance_cells = covariance_cells;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

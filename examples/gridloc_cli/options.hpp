@@ -11,12 +11,12 @@ namespace gridloc::cli {
 /// Parses "x,y,theta" (metres, metres, radians); throws gridloc::Error naming `what`.
 Pose2 parse_pose(const std::string& text, const std::string& what);
 
-LocalModel parse_local(const std::string& s);
-GlobalModel parse_global(const std::string& s);
-SearchStrategy parse_strategy(const std::string& s);
-ArcRule parse_arc_rule(const std::string& s);
-ScanModel parse_scan_model(const std::string& s);
-std::string to_string(ArcRule r);
+LocalModel parse_local(const std::string& text);
+GlobalModel parse_global(const std::string& text);
+SearchStrategy parse_strategy(const std::string& text);
+ArcRule parse_arc_rule(const std::string& text);
+ScanModel parse_scan_model(const std::string& text);
+std::string to_string(ArcRule rule);
 /// Checks --arc-depth (cells, >= 0, finite).
 double check_arc_depth(double cells);
 
@@ -38,8 +38,8 @@ struct SearchArgs {
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and
   /// --covariance-cells.
   void add_to(CLI::App* cmd);
-  /// Parses and checks them into `o`; throws gridloc::Error naming the option.
-  void apply(CorrelationOptions& o) const;
+  /// Parses and checks them into `options`; throws gridloc::Error naming the option.
+  void apply(CorrelationOptions& options) const;
 };
 
 /// The height band of an OctoMap map: --octomap-z-min, --octomap-z-max (m); used only when
