@@ -16,16 +16,16 @@ bool occupied(const OccupancyMap& map, int ix, int iy) {
 /// Outward normal of the obstacle surface at an occupied cell: the mean direction from the
 /// cell to its non-occupied neighbours (5x5 window).
 Eigen::Vector2d surface_normal(const OccupancyMap& map, int ix, int iy) {
-  Eigen::Vector2d n = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const int nx = ix + dx, ny = iy + dy;
       if ((dx || dy) && map.geometry.contains(nx, ny) && !occupied(map, nx, ny)) {
-        n += Eigen::Vector2d(dx, dy).normalized();
+        normal += Eigen::Vector2d(dx, dy).normalized();
       }
     }
   }
-  return n.norm() > 1e-9 ? n.normalized() : n;
+  return normal.norm() > 1e-9 ? normal.normalized() : normal;
 }
 
 /// Distance along a ray from (x, y) (grid frame) in direction (ux, uy) to the first occupied
@@ -61,83 +61,108 @@ double trace(const OccupancyMap& map, double x, double y, double ux, double uy, 
   return inf;
 }
 
-}  // namespace
-
-SonarSimOptions SonarSimOptions::realistic(std::uint64_t seed) {
-  SonarSimOptions o;
-  o.seed = seed;
-  o.range_sigma_m = 0.02;
-  o.range_sigma_frac = 0.01;
-  o.dropout_prob = 0.02;
-  o.specular_incidence_deg = 75.0;
-  o.crosstalk_prob = 0.01;
-  return o;
-}
-
-SonarSimOptions SonarSimOptions::harsh(std::uint64_t seed) {
-  SonarSimOptions o;
-  o.seed = seed;
-  o.range_sigma_m = 0.03;
-  o.range_sigma_frac = 0.02;
-  o.dropout_prob = 0.05;
-  o.specular_incidence_deg = 60.0;
-  o.crosstalk_prob = 0.05;
-  return o;
-}
-
-std::vector<double> simulate_sonar(const OccupancyMap& map, const SonarRing& ring,
-                                   const Pose2& pose, const SonarSimOptions& o) {
+/// Throws gridloc::Error for a pose that is not finite or options out of range.
+void check_simulation(const SonarSimOptions& options, const Pose2& pose) {
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
     throw Error("simulate: pose must be finite");
   }
-  for (double p : {o.dropout_prob, o.crosstalk_prob}) {
-    if (!(p >= 0.0 && p <= 1.0)) throw Error("simulate: probabilities must lie in [0, 1]");
+  for (double probability : {options.dropout_prob, options.crosstalk_prob}) {
+    if (!(probability >= 0.0 && probability <= 1.0)) {
+      throw Error("simulate: probabilities must lie in [0, 1]");
+    }
   }
-  if (!(o.range_sigma_m >= 0.0) || !(o.range_sigma_frac >= 0.0)) {
+  if (!(options.range_sigma_m >= 0.0) || !(options.range_sigma_frac >= 0.0)) {
     throw Error("simulate: noise sigmas must be >= 0");
   }
-  if (!(o.ray_step_deg > 0.0)) throw Error("simulate: ray_step_deg must be positive");
-  const Pose2 g = map.geometry.to_grid_frame(pose);
-  const Cell robot = map.geometry.cell_of(g.x, g.y);
+  if (!(options.ray_step_deg > 0.0)) throw Error("simulate: ray_step_deg must be positive");
+}
+
+/// The shortest echo of `sonar` at robot pose `grid_pose` (grid frame): the nearest hit of
+/// the rays fanned across its cone, a hit seen beyond the specular incidence excepted; +inf
+/// when none.
+double nearest_echo(const OccupancyMap& map, const SonarSpec& sonar, const Pose2& grid_pose,
+                    const SonarSimOptions& options, double cos_specular) {
+  const double sx = grid_pose.x + sonar.radius * std::cos(sonar.bearing + grid_pose.theta);
+  const double sy = grid_pose.y + sonar.radius * std::sin(sonar.bearing + grid_pose.theta);
+  const double axis = sonar.heading + grid_pose.theta;
+  const int rays =
+      std::max(2, static_cast<int>(std::ceil(rad2deg(sonar.cone) / options.ray_step_deg)) + 1);
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < rays; ++k) {
+    const double angle = axis - 0.5 * sonar.cone + sonar.cone * k / (rays - 1);
+    const double ux = std::cos(angle), uy = std::sin(angle);
+    Cell hit;
+    const double t = trace(map, sx, sy, ux, uy, sonar.max_range, hit);
+    if (!(t < best)) continue;
+    if (options.specular_incidence_deg < 90.0) {
+      const Eigen::Vector2d normal = surface_normal(map, hit.ix, hit.iy);
+      // cos(incidence) = -ray . normal; a smooth surface seen too obliquely stays silent.
+      if (normal.norm() > 0.0 && -(ux * normal.x() + uy * normal.y()) < cos_specular) continue;
+    }
+    best = t;
+  }
+  return best;
+}
+
+/// The reading of `sonar` for its nearest echo `best`: range noise, crosstalk (a wrong short
+/// echo), dropout, within [min_range, max_range].
+double noisy_range(const SonarSpec& sonar, double best, const SonarSimOptions& options, Rng& rng) {
+  // Draw every random number whatever happens, so one option never shifts another's stream.
+  const double u_drop = rng.uniform(), u_cross = rng.uniform(), u_short = rng.uniform();
+  const double noise = rng.gaussian();
+  double range = best;
+  if (std::isfinite(range)) {
+    range += noise * (options.range_sigma_m + options.range_sigma_frac * range);
+  }
+  if (u_cross < options.crosstalk_prob) {
+    const double upper = std::isfinite(best) ? std::min(best, sonar.max_range) : sonar.max_range;
+    range = sonar.min_range + u_short * (upper - sonar.min_range);
+  }
+  if (u_drop < options.dropout_prob) range = sonar.max_range;
+  if (!std::isfinite(range) || range >= sonar.max_range) range = sonar.max_range;
+  return std::max(range, sonar.min_range);
+}
+
+}  // namespace
+
+SonarSimOptions SonarSimOptions::realistic(std::uint64_t seed) {
+  SonarSimOptions options;
+  options.seed = seed;
+  options.range_sigma_m = 0.02;
+  options.range_sigma_frac = 0.01;
+  options.dropout_prob = 0.02;
+  options.specular_incidence_deg = 75.0;
+  options.crosstalk_prob = 0.01;
+  return options;
+}
+
+SonarSimOptions SonarSimOptions::harsh(std::uint64_t seed) {
+  SonarSimOptions options;
+  options.seed = seed;
+  options.range_sigma_m = 0.03;
+  options.range_sigma_frac = 0.02;
+  options.dropout_prob = 0.05;
+  options.specular_incidence_deg = 60.0;
+  options.crosstalk_prob = 0.05;
+  return options;
+}
+
+std::vector<double> simulate_sonar(const OccupancyMap& map, const SonarRing& ring,
+                                   const Pose2& pose, const SonarSimOptions& options) {
+  check_simulation(options, pose);
+  const Pose2 grid_pose = map.geometry.to_grid_frame(pose);
+  const Cell robot = map.geometry.cell_of(grid_pose.x, grid_pose.y);
   if (!map.geometry.contains(robot.ix, robot.iy)) {
     throw Error("simulate: pose (" + std::to_string(pose.x) + ", " + std::to_string(pose.y) +
                 ") lies outside the map");
   }
-  const double cos_spec = std::cos(deg2rad(o.specular_incidence_deg));
-  Rng rng(o.seed);
+  const double cos_specular = std::cos(deg2rad(options.specular_incidence_deg));
+  Rng rng(options.seed);
   std::vector<double> ranges;
   ranges.reserve(ring.sonars.size());
-  for (const SonarSpec& s : ring.sonars) {
-    const double sx = g.x + s.radius * std::cos(s.bearing + g.theta);
-    const double sy = g.y + s.radius * std::sin(s.bearing + g.theta);
-    const double axis = s.heading + g.theta;
-    const int rays = std::max(2, static_cast<int>(std::ceil(rad2deg(s.cone) / o.ray_step_deg)) + 1);
-    double best = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < rays; ++k) {
-      const double a = axis - 0.5 * s.cone + s.cone * k / (rays - 1);
-      const double ux = std::cos(a), uy = std::sin(a);
-      Cell hit;
-      const double t = trace(map, sx, sy, ux, uy, s.max_range, hit);
-      if (!(t < best)) continue;
-      if (o.specular_incidence_deg < 90.0) {
-        const Eigen::Vector2d n = surface_normal(map, hit.ix, hit.iy);
-        // cos(incidence) = -ray . normal; a smooth surface seen too obliquely stays silent.
-        if (n.norm() > 0.0 && -(ux * n.x() + uy * n.y()) < cos_spec) continue;
-      }
-      best = t;
-    }
-    // Draw every random number whatever happens, so one option never shifts another's stream.
-    const double u_drop = rng.uniform(), u_cross = rng.uniform(), u_short = rng.uniform();
-    const double noise = rng.gaussian();
-    double d = best;
-    if (std::isfinite(d)) d += noise * (o.range_sigma_m + o.range_sigma_frac * d);
-    if (u_cross < o.crosstalk_prob) {
-      const double upper = std::isfinite(best) ? std::min(best, s.max_range) : s.max_range;
-      d = s.min_range + u_short * (upper - s.min_range);
-    }
-    if (u_drop < o.dropout_prob) d = s.max_range;
-    if (!std::isfinite(d) || d >= s.max_range) d = s.max_range;
-    ranges.push_back(std::max(d, s.min_range));
+  for (const SonarSpec& sonar : ring.sonars) {
+    const double best = nearest_echo(map, sonar, grid_pose, options, cos_specular);
+    ranges.push_back(noisy_range(sonar, best, options, rng));
   }
   return ranges;
 }
