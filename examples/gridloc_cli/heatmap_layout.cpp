@@ -22,20 +22,20 @@ std::string pose_text(const Pose2& p) {
 }
 
 /// The name of a metre axis: "grid x (m)" when the grid is rotated.
-std::string axis_name(const GridGeometry& g, const char* axis) {
-  return std::string(g.yaw == 0.0 ? "" : "grid ") + axis + " (m)";
+std::string axis_name(const GridGeometry& grid, const char* axis) {
+  return std::string(grid.yaw == 0.0 ? "" : "grid ") + axis + " (m)";
 }
 
 /// Tick label offsets: world coordinates when the grid is not rotated.
-cv::Point2d tick_offset(const GridGeometry& g) {
-  return g.yaw == 0.0 ? cv::Point2d(g.origin.x(), g.origin.y()) : cv::Point2d(0.0, 0.0);
+cv::Point2d tick_offset(const GridGeometry& grid) {
+  return grid.yaw == 0.0 ? cv::Point2d(grid.origin.x(), grid.origin.y()) : cv::Point2d(0.0, 0.0);
 }
 
 }  // namespace
 
-cv::Vec3b grey(double g) {
-  const auto v = static_cast<std::uint8_t>(std::lround(g));
-  return {v, v, v};
+cv::Vec3b grey(double level) {
+  const auto byte = static_cast<std::uint8_t>(std::lround(level));
+  return {byte, byte, byte};
 }
 
 cv::Vec3b blend(const cv::Vec3b& top, const cv::Vec3b& under, double alpha) {
@@ -46,14 +46,14 @@ cv::Vec3b blend(const cv::Vec3b& top, const cv::Vec3b& under, double alpha) {
   return out;
 }
 
-cv::Mat canvas(plot::View& v, int right, int below, const std::string& caption) {
-  v.origin = {kLeft, kTop};
-  int width = kLeft + v.width() + right;
+cv::Mat canvas(plot::View& view, int right, int below, const std::string& caption) {
+  view.origin = {kLeft, kTop};
+  int width = kLeft + view.width() + right;
   std::istringstream lines(caption);
   for (std::string line; std::getline(lines, line);) {
     width = std::max(width, plot::text_size(line, plot::kTickScale).width + 24);
   }
-  return cv::Mat(kTop + v.height() + below, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  return cv::Mat(kTop + view.height() + below, width, CV_8UC3, cv::Scalar(255, 255, 255));
 }
 
 void title(cv::Mat& img, const std::string& line1, const std::string& caption) {
@@ -82,29 +82,29 @@ cv::Mat legend_and_crop(cv::Mat& img, const std::vector<plot::LegendItem>& items
   return crop_below(img, last);
 }
 
-void draw_hypotheses(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+void draw_hypotheses(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                      const HeatmapMarks& marks) {
   // Lowest ranked first, so that the best lie on top.
   for (std::size_t k = marks.hypotheses.size(); k-- > 0;) {
-    const Pose2 p = g.to_grid_frame(marks.hypotheses[k].pose);
-    plot::hypothesis_marker(img, v.px(p.x, p.y), p.theta, static_cast<int>(k) + 1);
+    const Pose2 p = grid.to_grid_frame(marks.hypotheses[k].pose);
+    plot::hypothesis_marker(img, view.px(p.x, p.y), p.theta, static_cast<int>(k) + 1);
   }
 }
 
-void draw_estimate_and_truth(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+void draw_estimate_and_truth(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                              const HeatmapMarks& marks) {
   if (marks.truth) {
-    const Pose2 t = g.to_grid_frame(*marks.truth);
-    plot::truth_marker(img, v.px(t.x, t.y), t.theta);
+    const Pose2 t = grid.to_grid_frame(*marks.truth);
+    plot::truth_marker(img, view.px(t.x, t.y), t.theta);
   }
-  const Pose2 e = g.to_grid_frame(marks.estimate);
-  plot::estimate_marker(img, v.px(e.x, e.y), e.theta);
+  const Pose2 e = grid.to_grid_frame(marks.estimate);
+  plot::estimate_marker(img, view.px(e.x, e.y), e.theta);
 }
 
-void draw_scale_and_axes(cv::Mat& img, const plot::View& v, const GridGeometry& g) {
-  plot::scale_bar(img, v);
-  const cv::Point2d o = tick_offset(g);
-  plot::axes_m(img, v, o.x, o.y, axis_name(g, "x"), axis_name(g, "y"));
+void draw_scale_and_axes(cv::Mat& img, const plot::View& view, const GridGeometry& grid) {
+  plot::scale_bar(img, view);
+  const cv::Point2d o = tick_offset(grid);
+  plot::axes_m(img, view, o.x, o.y, axis_name(grid, "x"), axis_name(grid, "y"));
 }
 
 }  // namespace gridloc::cli::layout

@@ -19,15 +19,15 @@ constexpr int kAxisBelow = 56;  // x tick labels and axis label
 // Grey levels of the map under the heat: free, occupied, unknown.
 constexpr double kFreeGrey = 250.0, kOccupiedGrey = 60.0, kUnknownGrey = 200.0;
 
-/// The grey pixel of level `g` (rounded).
-cv::Vec3b grey(double g);
+/// The grey pixel of `level` (rounded).
+cv::Vec3b grey(double level);
 
 /// `top` over `under` with opacity `alpha`, each channel rounded.
 cv::Vec3b blend(const cv::Vec3b& top, const cv::Vec3b& under, double alpha);
 
-/// A white canvas with the plot area of `v` at (kLeft, kTop), `right` px beside it and
+/// A white canvas with the plot area of `view` at (kLeft, kTop), `right` px beside it and
 /// `below` px under it, wide enough for the caption's lines.
-cv::Mat canvas(plot::View& v, int right, int below, const std::string& caption);
+cv::Mat canvas(plot::View& view, int right, int below, const std::string& caption);
 
 /// The title, then the caption's lines ('\n' separated).
 void title(cv::Mat& img, const std::string& line1, const std::string& caption);
@@ -41,15 +41,15 @@ cv::Mat legend_and_crop(cv::Mat& img, const std::vector<plot::LegendItem>& items
                         const cv::Rect& area);
 
 /// The hypotheses, numbered, lowest ranked first so that the best lie on top.
-void draw_hypotheses(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+void draw_hypotheses(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                      const HeatmapMarks& marks);
 
 /// The truth (when known), then the estimate over it.
-void draw_estimate_and_truth(cv::Mat& img, const plot::View& v, const GridGeometry& g,
+void draw_estimate_and_truth(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                              const HeatmapMarks& marks);
 
 /// The scale bar and the metre axes of a map-like image: world coordinates when the grid is
 /// not rotated, grid coordinates otherwise.
-void draw_scale_and_axes(cv::Mat& img, const plot::View& v, const GridGeometry& g);
+void draw_scale_and_axes(cv::Mat& img, const plot::View& view, const GridGeometry& grid);
 
 }  // namespace gridloc::cli::layout

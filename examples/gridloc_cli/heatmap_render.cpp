@@ -86,7 +86,7 @@ WindowBox window_box(const ScoreVolume& volume) {
 /// The window's cells and a margin around them (about 60 % of the window, 0.5 to 1.5 m),
 /// the truth too, within the map.
 View score_view(const ScoreVolume& volume, const WindowBox& w, const HeatmapMarks& marks) {
-  const GridGeometry& g = volume.geometry;
+  const GridGeometry& grid = volume.geometry;
   const double res = volume.resolution;
   View view;
   const double margin = std::clamp(0.6 * std::max(w.x1 - w.x0, w.y1 - w.y0), 0.5, 1.5);
@@ -95,7 +95,7 @@ View score_view(const ScoreVolume& volume, const WindowBox& w, const HeatmapMark
   view.y0 = w.y0 - margin;
   view.y1 = w.y1 + margin;
   if (marks.truth) {
-    const Pose2 t = g.to_grid_frame(*marks.truth);
+    const Pose2 t = grid.to_grid_frame(*marks.truth);
     view.x0 = std::min(view.x0, t.x - 0.5);
     view.x1 = std::max(view.x1, t.x + 0.5);
     view.y0 = std::min(view.y0, t.y - 0.5);
@@ -103,8 +103,8 @@ View score_view(const ScoreVolume& volume, const WindowBox& w, const HeatmapMark
   }
   view.x0 = std::max(view.x0, 0.0);
   view.y0 = std::max(view.y0, 0.0);
-  view.x1 = std::min(view.x1, g.width * res);
-  view.y1 = std::min(view.y1, g.height * res);
+  view.x1 = std::min(view.x1, grid.width * res);
+  view.y1 = std::min(view.y1, grid.height * res);
   view.scale = plot::fit_scale(view.x1 - view.x0, view.y1 - view.y0, res, 640.0);
   return view;
 }

@@ -67,15 +67,15 @@ bool in_free_space(const PolygonMap& map, const Eigen::Vector2d& p) {
 int sector_near(const SectorMap& sectors, const Eigen::Vector2d& p) {
   const int k = sectors.sector_at(p);
   if (k >= 0 || !in_free_space(sectors.map, p)) return k;
-  const GridGeometry& g = sectors.grid;
-  const Cell c = g.cell_of(p.x() - g.origin.x(), p.y() - g.origin.y());
+  const GridGeometry& grid = sectors.grid;
+  const Cell c = grid.cell_of(p.x() - grid.origin.x(), p.y() - grid.origin.y());
   int best = -1;
   double best_d = 1e300;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
-      if (!g.contains(c.ix + dx, c.iy + dy)) continue;
-      const int n = sectors.sector_of[g.index(c.ix + dx, c.iy + dy)];
-      const double d = (g.origin + g.cell_center(c.ix + dx, c.iy + dy) - p).squaredNorm();
+      if (!grid.contains(c.ix + dx, c.iy + dy)) continue;
+      const int n = sectors.sector_of[grid.index(c.ix + dx, c.iy + dy)];
+      const double d = (grid.origin + grid.cell_center(c.ix + dx, c.iy + dy) - p).squaredNorm();
       if (n >= 0 && d < best_d) best = n, best_d = d;
     }
   }
