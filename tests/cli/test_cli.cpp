@@ -408,7 +408,7 @@ TEST_F(Cli, HallwayReportsSeed004sFigures) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("seeds"), 5);
-  EXPECT_EQ(j.at("successes"), 5);  // 100 of 100 over seeds 1-100 (README)
+  EXPECT_EQ(j.at("successes"), 5);  // 100 of 100 over seeds 1-100 (engine/doc/icp.md)
   EXPECT_LT(j.at("mean_error_x_mm").get<double>(), 15.0);
   EXPECT_GT(j.at("mean_iterations").get<double>(), 1.0);
   expect_cli_error(run_cli(dir, "hallway --outliers rain"), "none, scattered or appearing");
@@ -505,8 +505,9 @@ TEST_F(Cli, RelationsOnTheIntelLog) {
     EXPECT_TRUE(j.at(key).at("mean").is_number()) << r.out;
     EXPECT_TRUE(j.at(key).at("std").is_number()) << r.out;
   }
-  // Measured: 2.6 cm, 0.59 deg and 2 failures (README "Real laser data"); the bounds catch a
-  // matcher that stops working on real scans, as the first version did (23 cm, 58 failures).
+  // Measured: 2.6 cm, 0.59 deg and 2 failures (engine/doc/icp.md, "Real laser data"); the
+  // bounds catch a matcher that stops working on real scans, as the first version did (23 cm,
+  // 58 failures).
   EXPECT_LT(j.at("translation_error_m").at("mean").get<double>(), 0.05) << r.out;
   EXPECT_LT(j.at("rotation_error_deg").at("mean").get<double>(), 1.0) << r.out;
   EXPECT_LE(j.at("failures").get<int>(), 12) << r.out;

@@ -105,9 +105,10 @@ TEST(Evaluation, BadOptions) {
 }
 
 TEST(Evaluation, LaserProtocolComparesTheEstimatorsOnTheSameTrials) {
-  // Measured over 300 trials (README "Comparing the estimators"): correlation 100 %, icp 87 %
-  // (seed 001's +-0.8 m, +-45 deg priors are often beyond ICP's reach), correlation + ICP
-  // 100 % with 1 mm mean error. 20 trials per room keep the ordering with a margin.
+  // Measured over 300 trials (engine/doc/correlation.md, "Comparing the estimators"):
+  // correlation 100 %, icp 87 % (seed 001's +-0.8 m, +-45 deg priors are often beyond ICP's
+  // reach), correlation + ICP 100 % with 1 mm mean error. 20 trials per room keep the
+  // ordering with a margin.
   const SonarRing ring = load_sonar_ring(test::ring_path());
   EvalOptions o;
   o.trials = kTrialsPerMap;

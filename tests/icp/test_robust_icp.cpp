@@ -207,9 +207,9 @@ TEST(RobustIcp, HuberRejectsAppearingObstacles) {
   // Seed 004 §4: "most of the outliers are occlusion or appearance of obstacles". 30 % of the
   // current scan, in four runs, is pulled 20-60 % closer, as if obstacles had appeared; these
   // runs form long segments that segmentation keeps, so only Huber can reject them. Measured
-  // over seeds 1-100 (`gridloc hallway --outliers appearing`, README): Huber 93 within 1 mm
-  // (the others stop in another basin: the phantoms hide what pins the 20 deg turn), least
-  // squares none.
+  // over seeds 1-100 (`gridloc hallway --outliers appearing`, engine/doc/icp.md): Huber 93
+  // within 1 mm (the others stop in another basin: the phantoms hide what pins the 20 deg
+  // turn), least squares none.
   IcpOptions plain;
   plain.robust = false;
   const int huber = successes(20, IcpOptions{}, 0.0, 1e-3, 0.01, OutlierKind::Appearing);
@@ -253,7 +253,7 @@ TEST(RobustIcp, CovarianceMatchesTheScatterOfNoisyMatches) {
   // of the pose, turned 20 deg and 0.5 m from the reference) agree with the scatter of the
   // estimates within a factor of 3. Measured: reported / sample 0.61, 0.51, 1.21: the
   // Gauss-Newton covariance ignores the tangents' own noise and is optimistic in position by
-  // about 2x (README).
+  // about 2x (engine/doc/icp.md).
   std::vector<Pose2> poses;
   Eigen::Vector3d reported = Eigen::Vector3d::Zero();
   const int n = 60;

@@ -135,7 +135,7 @@ TEST(RangeScanEstimator, ScanBeyondTheEstimatorsReachIsAnError) {
 }
 
 /// The peer-comparison case of ../shared/bench-cases/apartment: two 360-beam scans, windowed
-/// search from the README's start poses.
+/// search from the bench case README's start poses.
 TEST(RangeScanEstimator, SharedApartmentCases) {
   const std::filesystem::path dir =
       std::filesystem::path(GRIDLOC_TEST_SHARED_DIR) / "bench-cases" / "apartment";
