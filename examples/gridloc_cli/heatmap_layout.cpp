@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace gridloc::cli::layout {
@@ -32,6 +33,10 @@ cv::Point2d tick_offset(const GridGeometry& grid) {
 }
 
 }  // namespace
+
+double infinity() {
+  return std::numeric_limits<double>::infinity();
+}
 
 cv::Vec3b grey(double level) {
   const auto byte = static_cast<std::uint8_t>(std::lround(level));

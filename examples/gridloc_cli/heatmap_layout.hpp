@@ -1,7 +1,8 @@
 #pragma once
 // The page every image of `gridloc heatmap` shares (issue 4): a white canvas with the plot
 // area at (kLeft, kTop), the title and caption above it, the legend below it, the grey levels
-// of the map and the pose marks. heatmap_render.cpp draws the images on it.
+// of the map and the pose marks. heatmap_score_xy.cpp, heatmap_score_theta.cpp and
+// heatmap_overlay.cpp draw the images on it.
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ constexpr int kAxisBelow = 56;  // x tick labels and axis label
 
 // Grey levels of the map under the heat: free, occupied, unknown.
 constexpr double kFreeGrey = 250.0, kOccupiedGrey = 60.0, kUnknownGrey = 200.0;
+
+/// +infinity, the start of a running maximum (-infinity()).
+double infinity();
 
 /// The grey pixel of `level` (rounded).
 cv::Vec3b grey(double level);
