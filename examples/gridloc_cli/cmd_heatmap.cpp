@@ -1,10 +1,9 @@
 // gridloc heatmap (issue 4): the score volume of a localization as tuning images and files:
 // score over x, y (best heading, max over headings), score against heading, the local grid
-// on the global grid at the estimate, the raw volume as .npy with its axes in volume.json.
+// on the global grid at the estimate, the raw volume as .npy with its axes in volume.json
+// (heatmap_volume.cpp).
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -24,6 +23,7 @@
 #include "gridloc/sensors/sonar_model.hpp"
 #include "heatmap_plot.hpp"
 #include "heatmap_render.hpp"
+#include "heatmap_volume.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
 
@@ -40,77 +40,6 @@ struct HeatmapArgs {
   std::string truth, out;
   bool step_theta_given = false;  // --step-theta on the command line: honoured by --global too
 };
-
-/// NumPy .npy v1.0: magic, version, header length, a Python dict padded with spaces to a
-/// multiple of 64 bytes ending in '\n', then little-endian float32 in C order.
-void write_npy(const std::string& path, const ScoreVolume& volume) {
-  static_assert(std::endian::native == std::endian::little, "write_npy assumes little endian");
-  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                       std::to_string(volume.headings) + ", " + std::to_string(volume.ny) + ", " +
-                       std::to_string(volume.nx) + "), }";
-  const std::size_t unpadded = 10 + header.size() + 1;
-  header += std::string((64 - unpadded % 64) % 64, ' ') + "\n";
-  std::ofstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot write the score volume");
-  const std::uint16_t length = static_cast<std::uint16_t>(header.size());
-  file.write("\x93NUMPY\x01\x00", 8);
-  file.put(static_cast<char>(length & 0xff));
-  file.put(static_cast<char>(length >> 8));
-  file << header;
-  std::vector<float> data(volume.scores.begin(), volume.scores.end());
-  file.write(reinterpret_cast<const char*>(data.data()),
-             static_cast<std::streamsize>(data.size() * sizeof(float)));
-  if (!file) throw Error(path + ": cannot write the score volume");
-}
-
-/// volume.json: how scores.npy is laid out (shape, axes, the map grid), the best pose, the
-/// mass of each heading, the window and the files.
-nlohmann::json volume_json(const ScoreVolume& volume, const SearchWindow& window,
-                           const nlohmann::json& files) {
-  const GridGeometry& grid = volume.geometry;
-  const Pose2 first = volume.pose(0, 0, 0);
-  std::vector<double> mass(volume.mass.begin(), volume.mass.end());
-  return {{"file", "scores.npy"},
-          {"dtype", "float32, little endian"},
-          {"shape", {volume.headings, volume.ny, volume.nx}},
-          {"axes", {"heading", "y", "x"}},
-          {"index",
-           "scores[t, y, x]: heading theta0 + t * step_theta, cell centre (x0, y0) + x * "
-           "resolution * x_axis + y * resolution * y_axis (y grows northwards)"},
-          {"nx", volume.nx},
-          {"ny", volume.ny},
-          {"headings", volume.headings},
-          {"resolution", volume.resolution},
-          {"x0", first.x},
-          {"y0", first.y},
-          {"x_axis", {std::cos(grid.yaw), std::sin(grid.yaw)}},
-          {"y_axis", {-std::sin(grid.yaw), std::cos(grid.yaw)}},
-          {"theta0", volume.theta0 + grid.yaw},
-          {"step_theta", volume.step_theta},
-          {"theta0_deg", rad2deg(volume.theta0 + grid.yaw)},
-          {"step_theta_deg", rad2deg(volume.step_theta)},
-          {"map_cell0", {volume.ix0, volume.iy0}},
-          {"map_grid",
-           {{"resolution", grid.resolution},
-            {"origin", {grid.origin.x(), grid.origin.y()}},
-            {"yaw", grid.yaw},
-            {"width", grid.width},
-            {"height", grid.height}}},
-          {"best",
-           {{"x", volume.best.ix},
-            {"y", volume.best.iy},
-            {"t", volume.best.it},
-            {"score", volume.best.score},
-            {"pose", to_json(volume.pose(volume.best.ix, volume.best.iy, volume.best.it))}}},
-          {"mass", mass},
-          {"window",
-           {{"center", to_json(window.center)},
-            {"half_xy", window.half_xy},
-            {"half_theta", window.half_theta},
-            {"step_xy", window.step_xy},
-            {"step_theta", window.step_theta}}},
-          {"files", files}};
-}
 
 /// Two lines under each image's title: what was matched, and where.
 std::string caption(const LocalizationArgs& args, const Observation& observation,
