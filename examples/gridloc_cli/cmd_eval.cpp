@@ -114,7 +114,7 @@ bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators)
   if (sector_estimators && polygons == 0) {
     throw Error(
         "the sectors estimators need polygon maps (--maps polygons/office or a polygon YAML; "
-        "README, Polygon maps)");
+        "maps/README.md, Polygon map format)");
   }
   return polygons > 0;
 }

@@ -52,9 +52,10 @@ std::unique_ptr<Estimator> make_sector_estimator(
     const std::shared_ptr<const CorrelationEstimator>& correlation) {
   // Global: the window (--prior or --global) only sets on_window_edge.
   if (!is_polygon_map_file(args.inputs.map)) {
-    throw Error("--estimator " + args.estimator +
-                " needs a polygon map (--map with a 'boundary'; README, Polygon maps), not " +
-                args.inputs.map);
+    throw Error(
+        "--estimator " + args.estimator +
+        " needs a polygon map (--map with a 'boundary'; maps/README.md, Polygon map format), not " +
+        args.inputs.map);
   }
   const PolygonMap polygons = load_polygon_map(args.inputs.map);
   if (kind == EstimatorKind::Sectors) return std::make_unique<SectorEstimator>(polygons);

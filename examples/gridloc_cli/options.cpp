@@ -97,8 +97,9 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "bnb: stop after this many ms with the best pose so far (0 = no limit); "
                   "stats.proven_optimal says whether it is the optimum")
       ->capture_default_str();
-  cmd->add_flag("--heading-intervals", heading_intervals,
-                "bnb with a scan: bound intervals of headings too (exact; see README)");
+  cmd->add_flag(
+      "--heading-intervals", heading_intervals,
+      "bnb with a scan: bound intervals of headings too (exact; see engine/doc/correlation.md)");
   cmd->add_option("--hypotheses", hypotheses,
                   "distinct poses to report in alternatives, the winner included (found "
                   "exactly by bnb, one search each)")
