@@ -1,0 +1,192 @@
+// The correlation estimator's checks of what it is given: options, observations and search
+// windows, and the lattice a window spans (with the global window, the largest one).
+#include "checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace correlation_detail {
+
+/// Checks the options on their own; throws gridloc::Error naming the first that is wrong.
+void check(const CorrelationOptions& options) {
+  if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
+    throw Error("correlation options: resolution must be > 0, got " +
+                std::to_string(options.resolution));
+  }
+  if (options.levels < 1 || options.levels > 8) {
+    throw Error("correlation options: levels must be in [1, 8], got " +
+                std::to_string(options.levels));
+  }
+  if (options.keep < 1) throw Error("correlation options: keep must be >= 1");
+  if (options.hypotheses < 1 || options.hypotheses > 100) {
+    throw Error("correlation options: hypotheses must be in [1, 100], got " +
+                std::to_string(options.hypotheses));
+  }
+  if (options.covariance_cells < 0 || options.covariance_cells > 20) {
+    throw Error("correlation options: covariance_cells must be in [0, 20], got " +
+                std::to_string(options.covariance_cells));
+  }
+  validate(options.scan);
+  if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
+    throw Error("correlation options: budget_ms must be finite and >= 0, got " +
+                std::to_string(options.budget_ms));
+  }
+  // Options only branch and bound can honour are errors elsewhere, not silently ignored.
+  if (options.strategy != SearchStrategy::BranchAndBound &&
+      (options.budget_ms > 0.0 || options.heading_intervals)) {
+    throw Error(std::string("correlation options: ") +
+                (options.budget_ms > 0.0 ? "budget_ms" : "heading_intervals") +
+                " needs the branch-and-bound strategy");
+  }
+  if (options.threads < 1 || options.threads > 256) {
+    throw Error("correlation options: threads must be in [1, 256], got " +
+                std::to_string(options.threads));
+  }
+}
+
+/// What the global grids' padding covers (m): options.reach_m or the ring's reach, whichever
+/// is larger; throws gridloc::Error for a bad reach_m or a reach of a million cells or more.
+double padding_reach(const CorrelationOptions& options, const SonarRing& ring) {
+  if (!(options.reach_m >= 0.0) || !std::isfinite(options.reach_m)) {
+    throw Error("correlation options: reach_m must be >= 0, got " +
+                std::to_string(options.reach_m));
+  }
+  const double reach = std::max(options.reach_m, ring.sonars.empty() ? 0.0 : ring.reach());
+  if (reach / options.resolution > 1e6) {  // the padding alone would be 2 million cells wide
+    std::ostringstream m;
+    m << "correlation options: reach " << reach << " m is more than a million cells of "
+      << options.resolution << " m; a sensor reaches metres, not kilometres";
+    throw Error(m.str());
+  }
+  return reach;
+}
+
+/// Checks that the observation is sonar readings for `ring` or a scan within `reach`, not
+/// both; throws gridloc::Error naming what is wrong.
+void check_observation(const Observation& observation, const SonarRing& ring, double reach) {
+  if (observation.scan) {
+    if (!observation.ranges.empty()) {
+      throw Error("observation: give sonar ranges or a scan, not both");
+    }
+    if (!observation.rejected.empty()) {
+      throw Error("observation: a rejection mask is for sonar readings, not for a scan");
+    }
+    validate(*observation.scan);
+    if (observation.scan->max_range > reach + 1e-9) {
+      std::ostringstream m;
+      m << "scan: max range " << observation.scan->max_range << " m exceeds the estimator's reach "
+        << reach << " m (set CorrelationOptions::reach_m)";
+      throw Error(m.str());
+    }
+  } else {
+    if (ring.sonars.empty())
+      throw Error("observation: this estimator has no sonar ring; give a scan");
+    validate_readings(ring, observation.ranges, observation.rejected);
+  }
+}
+
+}  // namespace correlation_detail
+
+using namespace correlation_detail;
+
+void validate(const SearchWindow& w) {
+  auto bad = [](const std::string& field, double v, const std::string& rule) {
+    std::ostringstream m;
+    m << "search window: " << field << " = " << v << " " << rule;
+    throw Error(m.str());
+  };
+  if (!std::isfinite(w.center.x) || !std::isfinite(w.center.y) || !std::isfinite(w.center.theta)) {
+    throw Error("search window: the prior pose must be finite");
+  }
+  if (!(w.half_xy >= 0.0) || !std::isfinite(w.half_xy)) bad("half_xy", w.half_xy, "must be >= 0");
+  if (!(w.half_theta >= 0.0) || !(w.half_theta <= std::numbers::pi)) {
+    bad("half_theta", w.half_theta, "must lie in [0, pi]");
+  }
+  if (!(w.step_xy > 0.0) || !std::isfinite(w.step_xy)) bad("step_xy", w.step_xy, "must be > 0");
+  if (!(w.step_theta > 0.0) || !std::isfinite(w.step_theta)) {
+    bad("step_theta", w.step_theta, "must be > 0");
+  }
+}
+
+Lattice CorrelationEstimator::lattice(const Observation& observation,
+                                      const SearchWindow& window) const {
+  check_observation(observation, ring_, reach_);
+  validate(window);
+  const double res = options_.resolution;
+  if (std::abs(window.step_xy - res) > 1e-9) {
+    std::ostringstream m;
+    m << "search window: step_xy = " << window.step_xy << " must equal the estimator's grid "
+      << "resolution " << res << " (the translation lattice is the grid)";
+    throw Error(m.str());
+  }
+
+  const PaddedGrid& finest = levels_.front();
+  const Pose2 prior = map_.geometry.to_grid_frame(window.center);
+  const Cell c = {static_cast<int>(std::floor(prior.x / res)),
+                  static_cast<int>(std::floor(prior.y / res))};
+  if (c.ix < 0 || c.iy < 0 || c.ix >= finest.width || c.iy >= finest.height) {
+    std::ostringstream m;
+    m << "prior (" << window.center.x << ", " << window.center.y << ") lies outside the map";
+    throw Error(m.str());
+  }
+  // The largest sensible window is global_window's: the whole map.
+  const double map_w = finest.width * res, map_h = finest.height * res;
+  if (window.half_xy > 0.5 * std::max(map_w, map_h) + res + 1e-9) {
+    std::ostringstream m;
+    m << "search window: +-" << window.half_xy << " m is larger than the map (" << map_w << " x "
+      << map_h << " m); search the whole map with global localization (global_window, "
+      << "gridloc localize --global)";
+    throw Error(m.str());
+  }
+  // Clipped to the map below; the cap only keeps the integer arithmetic safe.
+  const int n = static_cast<int>(std::min(std::lround(window.half_xy / res), 1L << 20));
+  const double half_headings = window.half_theta / window.step_theta;
+  if (half_headings > 50000.0) {
+    std::ostringstream m;
+    m << "search window: half_theta / step_theta = " << half_headings
+      << " would search more than 100001 headings; use a larger step_theta";
+    throw Error(m.str());
+  }
+  const int nt = static_cast<int>(std::lround(half_headings));
+  Lattice lattice;
+  lattice.x0 = std::max(0, c.ix - n);
+  lattice.x1 = std::min(finest.width - 1, c.ix + n);
+  lattice.y0 = std::max(0, c.iy - n);
+  lattice.y1 = std::min(finest.height - 1, c.iy + n);
+  lattice.headings = 2 * nt + 1;
+  lattice.theta0 = prior.theta - nt * window.step_theta;
+  lattice.step_theta = window.step_theta;
+  return lattice;
+}
+
+SearchWindow CorrelationEstimator::global_window(const Observation& observation) const {
+  const PaddedGrid& finest = levels_.front();
+  const double res = options_.resolution;
+  SearchWindow w;
+  w.step_xy = res;
+  w.center =
+      map_.geometry.to_world_frame({0.5 * finest.width * res, 0.5 * finest.height * res, 0.0});
+  // Half the larger side plus a cell: the lattice covers every cell (it is clipped to the map).
+  w.half_xy = 0.5 * std::max(finest.width, finest.height) * res + res;
+  w.half_theta = std::numbers::pi;  // headings -pi and +pi coincide: one heading scored twice
+  w.step_theta = deg2rad(5.0);
+  if (observation.scan) {
+    double far = 0.0;
+    for (double r : observation.scan->ranges) {
+      if (r < observation.scan->max_range) far = std::max(far, r);
+    }
+    if (far > res) {
+      const double step = std::acos(1.0 - res * res / (2.0 * far * far));
+      w.step_theta = std::clamp(step, deg2rad(0.1), deg2rad(5.0));
+    }
+  }
+  return w;
+}
+
+}  // namespace gridloc

@@ -1,0 +1,151 @@
+// How sure the correlation estimator is: distinct peaks, the winner's covariance, the sonar
+// readings' agreement, the confidence and the verdict (README, "Knowing when it is wrong").
+#include "confidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "gridloc/sensors/sonar_sim.hpp"
+
+namespace gridloc {
+namespace correlation_detail {
+
+/// The neighbourhood of `p` whose poses are not distinct from it: within distinct_xy and
+/// distinct_theta, in lattice units (one definition for every strategy, so that they agree
+/// exactly on the second peak).
+Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
+                        const CorrelationOptions& options) {
+  return {p, options.distinct_xy / res,
+          static_cast<int>(std::floor(options.distinct_theta / step_theta + 1e-9))};
+}
+
+/// Distinct local maxima of the scored poses: best first (ties to the lowest index), each
+/// outside the neighbourhood of every one chosen before.
+std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
+                                        double step_theta, const CorrelationOptions& options,
+                                        std::size_t max_count) {
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
+  std::vector<LatticePose> peaks;
+  for (const auto& c : scored) {
+    const bool distinct = std::none_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
+      return neighbourhood(p, res, step_theta, options).contains(c.ix, c.iy, c.it);
+    });
+    if (distinct) peaks.push_back(c);
+    if (peaks.size() == max_count) break;
+  }
+  return peaks;
+}
+
+/// Covariance of the pose around the lattice winner `best`: every lattice pose within k
+/// cells and k heading steps is scored, and read as a likelihood p ∝ exp(S - S_best) (the
+/// score as a log-likelihood: one nat per fully matched unit-weight cell, the reading of a
+/// correlation score real-time correlative matching uses); the weighted covariance of
+/// (x, y, theta) plus the lattice's own quantization variance (step^2 / 12 per axis), rotated
+/// into the world frame by the map's yaw.
+Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
+                                const PaddedGrid& global,
+                                const std::function<PlacedLocalGrid(int)>& placed_at, int k,
+                                double yaw) {
+  const double res = global.grid.geometry.resolution;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  double total = 0.0;
+  // A lattice that goes all the way round wraps: the neighbours of heading 0 include the last.
+  const bool round = lattice.headings * std::abs(lattice.step_theta) >= 2.0 * std::numbers::pi;
+  const int t0 = round ? best.it - k : std::max(0, best.it - k);
+  const int t1 = round ? best.it + k : std::min(lattice.headings - 1, best.it + k);
+  for (int t = t0; t <= t1; ++t) {
+    const int it = (t % lattice.headings + lattice.headings) % lattice.headings;
+    const PlacedLocalGrid placed = placed_at(it);
+    for (int iy = std::max(lattice.y0, best.iy - k); iy <= std::min(lattice.y1, best.iy + k);
+         ++iy) {
+      for (int ix = std::max(lattice.x0, best.ix - k); ix <= std::min(lattice.x1, best.ix + k);
+           ++ix) {
+        const double w = std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score));
+        // Offsets from the winner: metres, metres, radians.
+        const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
+                                (t - best.it) * lattice.step_theta);
+        total += w;
+        mean += w * d;
+        second += w * d * d.transpose();
+      }
+    }
+  }
+  mean /= total;
+  Eigen::Matrix3d cov = second / total - mean * mean.transpose();
+  cov(0, 0) += res * res / 12.0;
+  cov(1, 1) += res * res / 12.0;
+  cov(2, 2) += lattice.step_theta * lattice.step_theta / 12.0;
+  Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();  // grid frame -> world frame
+  rotate.topLeftCorner<2, 2>() << std::cos(yaw), -std::sin(yaw), std::sin(yaw), std::cos(yaw);
+  return rotate * cov * rotate.transpose();
+}
+
+/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e` (README,
+/// "Knowing when it is wrong"). `searched_second`: a distinct hypothesis was looked for.
+void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
+  ConfidenceParts& c = e.confidence_parts;
+  c.fit = std::clamp(e.normalized_score, 0.0, 1.0);
+  c.agreement = std::isnan(e.agreement) ? 1.0 : e.agreement;
+  const double distinct =
+      e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
+  c.distinctness = searched_second ? distinct / (distinct + v.distinct_scale) : 1.0;
+  const double spread = std::sqrt(std::max(0.0, e.covariance(0, 0) + e.covariance(1, 1)));
+  c.sharpness = std::exp(-spread / v.spread_scale_m);
+  e.confidence = c.agreement * c.fit * c.distinctness * c.sharpness;
+  e.ambiguous = false;
+  for (std::size_t k = 1; k < e.alternatives.size(); ++k) {
+    const Hypothesis& h = e.alternatives[k];
+    const double far = std::hypot(h.pose.x - e.lattice_pose.x, h.pose.y - e.lattice_pose.y);
+    const double turn = std::abs(normalize_angle(h.pose.theta - e.lattice_pose.theta));
+    if (h.score >= v.ambiguity_ratio * e.score && e.score > 0.0 &&
+        (far > v.ambiguity_xy || turn > v.ambiguity_theta)) {
+      e.ambiguous = true;
+    }
+  }
+  e.verdict = e.ambiguous                              ? Verdict::Ambiguous
+              : e.confidence >= v.localized_confidence ? Verdict::Localized
+                                                       : Verdict::NotLocalized;
+}
+
+/// Estimate::agreement: the share of `ranges` that a noise-free simulation on `map` at
+/// `pose` reproduces within 10 cm + 5 % (or both without echo); sonars flagged in `rejected`
+/// are left out.
+double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
+                         const std::vector<double>& ranges, const std::vector<bool>& rejected,
+                         const Pose2& pose) {
+  const std::vector<double> expected = simulate_sonar(map, ring, pose);
+  int agree = 0, used = 0;
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    if (i < rejected.size() && rejected[i]) continue;
+    ++used;
+    const double limit = ring.sonars[i].max_range;
+    const bool none = ranges[i] >= limit, none_expected = expected[i] >= limit;
+    if (none && none_expected) {
+      ++agree;
+    } else if (!none && !none_expected &&
+               std::abs(ranges[i] - expected[i]) <= 0.10 + 0.05 * expected[i]) {
+      ++agree;
+    }
+  }
+  return used == 0 ? 0.0 : static_cast<double>(agree) / static_cast<double>(used);
+}
+
+}  // namespace correlation_detail
+
+std::string to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Localized:
+      return "localized";
+    case Verdict::Ambiguous:
+      return "ambiguous";
+    case Verdict::NotLocalized:
+      return "not localized";
+  }
+  return "unknown";
+}
+
+}  // namespace gridloc

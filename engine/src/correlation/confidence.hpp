@@ -1,0 +1,36 @@
+#pragma once
+// How sure the correlation estimator is (internal): the distinct peaks of the scores, the
+// covariance around the winner, the readings' agreement and the verdict.
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "gridloc/engine/correlation/estimator.hpp"
+
+namespace gridloc::correlation_detail {
+
+/// The neighbourhood of `p` whose poses are not distinct from it, in lattice units.
+Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
+                        const CorrelationOptions& options);
+
+/// Distinct local maxima of the scored poses, best first, up to `max_count`.
+std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
+                                        double step_theta, const CorrelationOptions& options,
+                                        std::size_t max_count);
+
+/// Covariance of the pose around the lattice winner `best`, from the scores within k cells.
+Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
+                                const PaddedGrid& global,
+                                const std::function<PlacedLocalGrid(int)>& placed_at, int k,
+                                double yaw);
+
+/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`.
+void judge(Estimate& e, bool searched_second, const VerdictOptions& v);
+
+/// Estimate::agreement: the share of `ranges` a noise-free simulation at `pose` reproduces.
+double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
+                         const std::vector<double>& ranges, const std::vector<bool>& rejected,
+                         const Pose2& pose);
+
+}  // namespace gridloc::correlation_detail
