@@ -1,0 +1,149 @@
+// What branch and bound bounds and scores with: the bound pyramid (max / min pooled grids,
+// also as int8) and the heading grids (each heading's local grid and rigid points' cells).
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <sstream>
+#include <string>
+
+#include "gridloc/engine/correlation/branch_and_bound.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/pooling.hpp"
+
+namespace gridloc {
+namespace {
+
+constexpr int kMaxDepth = 30;  // 2^h must fit an int
+
+}  // namespace
+
+BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
+  if (depth < 0 || depth > kMaxDepth) {
+    throw Error("bound pyramid: depth = " + std::to_string(depth) + " must lie in [0, " +
+                std::to_string(kMaxDepth) + "]");
+  }
+  if (global.arc_view.size() != global.grid.cells.size()) {
+    throw Error("bound pyramid: the padded grid's arc_view does not match its grid");
+  }
+  BoundPyramid p;
+  p.pad = global.pad;
+  p.width = global.width;
+  p.height = global.height;
+  p.arc_max.resize(static_cast<std::size_t>(depth) + 1);
+  p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
+  EvidenceGrid arc = global.grid;  // arc_view with the padded geometry
+  arc.cells = global.arc_view;
+  for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
+    const auto l = static_cast<std::size_t>(h);
+    const int half = 1 << (h - 1);
+    p.arc_max[l] = max_pool_doubled(h == 1 ? arc : p.arc_max[l - 1], half);
+    p.grid_min[l] = min_pool_doubled(h == 1 ? global.grid : p.grid_min[l - 1], half);
+  }
+  if (!arc.cells.empty()) {
+    p.arc_max_all = *std::max_element(arc.cells.begin(), arc.cells.end());
+    p.grid_min_all = *std::min_element(global.grid.cells.begin(), global.grid.cells.end());
+  }
+  for (float v : arc.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  for (float v : global.grid.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
+  auto is_ternary = [](const EvidenceGrid& g) {
+    return std::all_of(g.cells.begin(), g.cells.end(),
+                       [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; });
+  };
+  if (is_ternary(arc) && is_ternary(global.grid)) {  // pooling keeps values: levels are too
+    auto to_int8 = [](const EvidenceGrid& g) { return to_int8_with_slack(g.cells); };
+    p.arc_max8.push_back(to_int8(arc));
+    p.grid_min8.push_back(to_int8(global.grid));
+    for (int h = 1; h <= depth; ++h) {
+      p.arc_max8.push_back(to_int8(p.arc_max[static_cast<std::size_t>(h)]));
+      p.grid_min8.push_back(to_int8(p.grid_min[static_cast<std::size_t>(h)]));
+    }
+  }
+  return p;
+}
+
+int bound_depth_for(const Lattice& lattice) {
+  const int n = std::max(lattice.x1 - lattice.x0 + 1, lattice.y1 - lattice.y0 + 1);
+  int depth = 0;
+  while (depth < kMaxDepth && (1 << depth) < n) ++depth;
+  return depth;
+}
+
+HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
+    : lattice_(lattice),
+      level_(finest),
+      entries_(std::make_unique<Entry[]>(static_cast<std::size_t>(std::max(lattice.headings, 0)))) {
+  if (finest.global == nullptr) throw Error("branch and bound: the search level has no grid");
+  if (finest.points != nullptr) {
+    const double res = finest.global->grid.geometry.resolution;
+    if (finest.points->max_norm / res + 1.0 > finest.global->pad) {
+      std::ostringstream m;
+      m << "branch and bound: the scan's points reach " << finest.points->max_norm
+        << " m, beyond the padding of " << finest.global->pad << " cells";
+      throw Error(m.str());
+    }
+  }
+}
+
+const PlacedLocalGrid& HeadingGrids::placed(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.placed_once, [&] {
+    if (level_.points != nullptr) {  // make_local's grid, without the detour (tested equal)
+      e.placed = place_points(*level_.points, lattice_.theta(it), *level_.global);
+      return;
+    }
+    const SparseLocalGrid local = level_.make_local(lattice_.theta(it), Eigen::Vector2d::Zero());
+    const int extent = local.size() > 0 ? local.extent() : 0;
+    if (extent > level_.global->pad) {
+      throw Error("branch and bound: local grid extent " + std::to_string(extent) +
+                  " cells (heading " + std::to_string(it) + ") exceeds the padding " +
+                  std::to_string(level_.global->pad));
+    }
+    e.placed = place(local, *level_.global);
+  });
+  return e.placed;
+}
+
+const HeadingGrids::PointCells& HeadingGrids::point_cells(int it) const {
+  Entry& e = entries_[static_cast<std::size_t>(it)];
+  std::call_once(e.cells_once, [&] {
+    const ScanPoints& p = *level_.points;
+    const double theta = lattice_.theta(it);
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double inv = 1.0 / level_.global->grid.geometry.resolution;
+    const std::ptrdiff_t width = level_.global->grid.width();
+    // Sorted by offset: a bound then walks the grid's rows in order.
+    std::vector<std::pair<std::ptrdiff_t, Eigen::Vector2i>> hits, frees;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Eigen::Vector2i cell = point_cell(p, k, c, s, inv);
+      (k < p.hit_count ? hits : frees).push_back({cell.y() * width + cell.x(), cell});
+    }
+    auto fill = [](auto& items, auto& offset, auto& xs, auto& ys) {
+      std::sort(items.begin(), items.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [o, cell] : items) {
+        offset.push_back(o);
+        xs.push_back(cell.x());
+        ys.push_back(cell.y());
+      }
+    };
+    fill(hits, e.cells.hit_offset, e.cells.hit_x, e.cells.hit_y);
+    fill(frees, e.cells.free_offset, e.cells.free_x, e.cells.free_y);
+  });
+  return e.cells;
+}
+
+void HeadingGrids::make_all() const {
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic) num_threads(level_.threads) if (level_.threads > 1)
+  for (int it = 0; it < lattice_.headings; ++it) {
+    try {
+      placed(it);
+    } catch (...) {
+#pragma omp critical(gridloc_make_all)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace gridloc
