@@ -1,5 +1,6 @@
 // How sure the correlation estimator is: distinct peaks, the winner's covariance, the sonar
-// readings' agreement, the confidence and the verdict (README, "Knowing when it is wrong").
+// readings' agreement, the confidence and the verdict (engine/doc/correlation.md, "Knowing when it
+// is wrong").
 #include "confidence.hpp"
 
 #include <algorithm>
@@ -84,8 +85,9 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
   return rotate * cov * rotate.transpose();
 }
 
-/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e` (README,
-/// "Knowing when it is wrong"). `searched_second`: a distinct hypothesis was looked for.
+/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`
+/// (engine/doc/correlation.md, "Knowing when it is wrong"). `searched_second`: a distinct
+/// hypothesis was looked for.
 void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
   ConfidenceParts& c = e.confidence_parts;
   c.fit = std::clamp(e.normalized_score, 0.0, 1.0);

@@ -42,7 +42,8 @@ enum class Verdict { Localized, Ambiguous, NotLocalized };
 /// "localized", "ambiguous" or "not localized".
 std::string to_string(Verdict verdict);
 
-/// The factors of Estimate::confidence, each in [0, 1] (README, "Knowing when it is wrong").
+/// The factors of Estimate::confidence, each in [0, 1] (engine/doc/correlation.md, "Knowing when it
+/// is wrong").
 struct ConfidenceParts {
   double fit = 0.0;           ///< normalized_score clamped: how much of the best possible score
   double agreement = 0.0;     ///< Estimate::agreement (1 for scans, which have none)
@@ -72,8 +73,8 @@ struct Estimate {
   /// scans.
   double agreement = 0.0;
   /// Covariance of (x, y, theta) in the world frame (m^2, m rad, rad^2), from the scores
-  /// around the lattice winner read as a likelihood (see PeakCovariance in the README);
-  /// zero when not computed (CorrelationOptions::covariance off).
+  /// around the lattice winner read as a likelihood (examples/gridloc_cli/README.md, under
+  /// `localize`); zero when not computed (CorrelationOptions::covariance off).
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   SearchStats stats;
 };

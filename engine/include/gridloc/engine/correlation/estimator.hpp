@@ -18,8 +18,9 @@ namespace gridloc {
 /// Multires (seed 001 §2) may miss the winner when a coarse level misleads it.
 enum class SearchStrategy { Exhaustive, Multires, BranchAndBound };
 
-/// Thresholds of the verdict and scales of the confidence (README, "Knowing when it is
-/// wrong"); the defaults come from the noisy evaluation protocol.
+/// Thresholds of the verdict and scales of the confidence
+/// (engine/doc/correlation.md, "Knowing when it is wrong"); the defaults come from the noisy
+/// evaluation protocol.
 struct VerdictOptions {
   double localized_confidence = 0.20;     ///< below: not localized
   double ambiguity_ratio = 0.97;          ///< a hypothesis scoring this share of the best ...

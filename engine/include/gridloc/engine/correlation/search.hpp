@@ -19,7 +19,8 @@ namespace gridloc {
 /// eq. (1) literally: the product is negative. `Neutral` scores it 0: an arc says that *one*
 /// of its cells is occupied, not that each is, so an arc cell over free space contradicts
 /// nothing. Free-sector and footprint cells (local value < 0) always score signed.
-/// Neutral removes a heading bias of the signed rule on oblique walls (see README).
+/// Neutral removes a heading bias of the signed rule on oblique walls (see
+/// engine/doc/correlation.md).
 enum class ArcRule { Neutral, Signed };
 
 /// A global grid padded with `pad` unknown (0) cells on every side, so that any local grid

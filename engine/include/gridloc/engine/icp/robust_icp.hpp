@@ -59,7 +59,7 @@ struct IcpOptions {
   double min_scale_m = 1e-6;  ///< floor of sigma, so noise-free data do not divide by zero
   /// Pairs farther apart than this are not used. 0.5 m covers a prior off by 0.3 m and 10 deg
   /// at a few metres; wider lets real scans slide into wrong alignments (2 m: 21 failures of
-  /// 106 Intel pairs, 0.5 m: 11; README "Real laser data").
+  /// 106 Intel pairs, 0.5 m: 11; engine/doc/icp.md, "Real laser data").
   double max_correspondence_m = 0.5;
   int max_iterations = 50;
   /// A matching point "fits" (IcpResult::fitting_pairs) within this point-to-tangent distance.
