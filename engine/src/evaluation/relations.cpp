@@ -68,12 +68,6 @@ Pose2 correlate(const RangeScan& reference, const RangeScan& current,
 
 }  // namespace
 
-Pose2 relative_pose(const Pose2& a, const Pose2& b) {
-  const double c = std::cos(a.theta), s = std::sin(a.theta);
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  return {c * dx + s * dy, -s * dx + c * dy, normalize_angle(b.theta - a.theta)};
-}
-
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& options, bool* converged) {
   if (is_sector_estimator(options.matcher)) {

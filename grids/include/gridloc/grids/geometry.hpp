@@ -26,6 +26,20 @@ struct Pose2 {
   double theta = 0.0;
 };
 
+/// The pose b in a's frame, a^-1 * b: where b lies as seen from a (odometry increments,
+/// scan-pair motions).
+inline Pose2 relative_pose(const Pose2& a, const Pose2& b) {
+  const double c = std::cos(a.theta), s = std::sin(a.theta);
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  return {c * dx + s * dy, -s * dx + c * dy, normalize_angle(b.theta - a.theta)};
+}
+
+/// The pose b given in a's frame, in a's parent frame: a * b (the inverse of relative_pose).
+inline Pose2 compose(const Pose2& a, const Pose2& b) {
+  const double c = std::cos(a.theta), s = std::sin(a.theta);
+  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, normalize_angle(a.theta + b.theta)};
+}
+
 /// Integer cell coordinates (column ix grows with x, row iy grows with y).
 struct Cell {
   int ix = 0;

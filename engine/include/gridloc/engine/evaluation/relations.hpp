@@ -57,9 +57,6 @@ struct RelationEvalReport {
   double median_ms = 0.0;  ///< per match, the reference map's construction included
 };
 
-/// The relative pose b in a's frame: a^-1 * b.
-Pose2 relative_pose(const Pose2& a, const Pose2& b);
-
 /// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
 /// `converged`: for Icp, whether ICP converged (false at the iteration limit, with too few
 /// pairs, or on a scan ICP cannot use, whose estimate is then the prior); Correlation and
