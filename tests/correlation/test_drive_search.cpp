@@ -87,6 +87,31 @@ TEST(DriveSearch, BranchAndBoundEqualsExhaustiveOnAFusedDrive) {
   }
 }
 
+TEST(DriveSearch, OneEstimatorServesEveryDriveThroughTheObservationsRing) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  CorrelationOptions options;
+  options.reach_m = ring().reach() + DriveWindowOptions{}.max_distance_m;
+  const CorrelationEstimator shared(map, ring(), options);
+  for (const DriveCase& drive : drive_cases(map, 3, 23)) {
+    const CorrelationEstimator own(map, drive.fused.ring);
+    const Pose2 prior = compose(drive.truth, {0.2, 0.3, -0.3});
+    const Estimate expected = own.estimate(Observation{drive.fused.ranges}, window_at(prior));
+    const Observation observation{drive.fused.ranges, std::nullopt, {}, drive.fused.ring};
+    const Estimate e = shared.estimate(observation, window_at(prior));
+    EXPECT_EQ(e.score, expected.score);
+    EXPECT_EQ(e.lattice_pose.x, expected.lattice_pose.x);
+    EXPECT_EQ(e.lattice_pose.y, expected.lattice_pose.y);
+    EXPECT_EQ(e.lattice_pose.theta, expected.lattice_pose.theta);
+    EXPECT_EQ(e.agreement, expected.agreement);
+  }
+  // A drive longer than the estimator's reach allows is refused, not cut.
+  const CorrelationEstimator short_reach(map, ring());
+  const DriveCase drive = drive_cases(map, 1, 29).front();
+  const Observation too_far{drive.fused.ranges, std::nullopt, {}, drive.fused.ring};
+  test::expect_error([&] { short_reach.estimate(too_far, window_at(drive.truth)); },
+                     {"drive's ring reaches", "reach_m"});
+}
+
 TEST(DriveSearch, ADriveLocalizesItsLatestPose) {
   const OccupancyMap map = load_ros_map(test::map_path("room_furnished"));
   for (const DriveCase& drive : drive_cases(map, 6, 11)) {

@@ -77,6 +77,7 @@ void check_observation(const Observation& observation, const SonarRing& ring, do
     if (!observation.rejected.empty()) {
       throw Error("observation: a rejection mask is for sonar readings, not for a scan");
     }
+    if (observation.ring) throw Error("observation: a ring is for sonar readings, not for a scan");
     validate(*observation.scan);
     if (observation.scan->max_range > reach + 1e-9) {
       std::ostringstream m;
@@ -84,6 +85,18 @@ void check_observation(const Observation& observation, const SonarRing& ring, do
         << reach << " m (set CorrelationOptions::reach_m)";
       throw Error(m.str());
     }
+  } else if (observation.ring) {
+    if (ring.sonars.empty())
+      throw Error("observation: this estimator has no sonar ring; give a scan");
+    validate(*observation.ring);
+    if (observation.ring->reach() > reach + 1e-9) {
+      std::ostringstream m;
+      m << "observation: the drive's ring reaches " << observation.ring->reach()
+        << " m, beyond the estimator's reach " << reach
+        << " m (set CorrelationOptions::reach_m to the ring's reach plus the drive's length)";
+      throw Error(m.str());
+    }
+    validate_readings(*observation.ring, observation.ranges, observation.rejected);
   } else {
     if (ring.sonars.empty())
       throw Error("observation: this estimator has no sonar ring; give a scan");

@@ -250,7 +250,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   place_winner(e, search, map_.geometry, options_);
   e.score = best.score;
   e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
-                                 : reading_agreement(map_, ring_, observation.ranges,
+                                 : reading_agreement(map_, ring_of(observation), observation.ranges,
                                                      observation.rejected, e.pose);
   e.on_window_edge = on_window_edge(best, lattice, window, map_.geometry, options_.resolution);
   // The winning heading's local grid: the most any pose could score.
@@ -335,8 +335,8 @@ SparseLocalGrid CorrelationEstimator::local_grid(const Observation& observation,
   if (observation.scan) {
     return rasterize_scan(*observation.scan, theta, resolution, centre, options_.scan);
   }
-  return rasterize(ring_, observation.ranges, theta, resolution, options_.local, centre,
-                   options_.sonar, observation.rejected);
+  return rasterize(ring_of(observation), observation.ranges, theta, resolution, options_.local,
+                   centre, options_.sonar, observation.rejected);
 }
 
 }  // namespace gridloc

@@ -7,6 +7,7 @@
 
 #include "gridloc/engine/estimate.hpp"
 #include "gridloc/sensors/range_scan.hpp"
+#include "gridloc/sensors/sonar_ring.hpp"
 
 namespace gridloc {
 
@@ -19,6 +20,10 @@ struct Observation {
   std::vector<double> ranges;
   std::optional<RangeScan> scan = std::nullopt;
   std::vector<bool> rejected = {};  ///< one flag per sonar, or empty
+  /// The ring `ranges` belong to when it is not the estimator's own: a drive fused by
+  /// fuse_firings (each firing's sonars re-mounted in the latest pose's frame). Its reach must
+  /// lie within the estimator's (CorrelationOptions::reach_m). Unset: the estimator's ring.
+  std::optional<SonarRing> ring = std::nullopt;
 };
 
 /// The estimators a caller can choose by name (the command line's --estimator and

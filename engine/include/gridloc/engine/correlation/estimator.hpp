@@ -124,6 +124,10 @@ class CorrelationEstimator final : public Estimator {
   const CorrelationOptions& options() const { return options_; }
   const OccupancyMap& map() const { return map_; }
   const SonarRing& ring() const { return ring_; }
+  /// The ring an observation's ranges belong to: its own (a fused drive's) or the estimator's.
+  const SonarRing& ring_of(const Observation& observation) const {
+    return observation.ring ? *observation.ring : ring_;
+  }
   /// The padded global grid of level l (0 = finest; the coarser ones exist for the
   /// multiresolution strategy only). Throws std::out_of_range past the last.
   const PaddedGrid& level(int l) const { return levels_.at(static_cast<std::size_t>(l)); }
