@@ -7,10 +7,8 @@
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
-namespace {
 
-/// Throws unless the window's bounds are usable.
-void check_window(const DriveWindowOptions& window) {
+void validate(const DriveWindowOptions& window) {
   if (!(window.max_distance_m >= 0.0) || !std::isfinite(window.max_distance_m)) {
     throw Error("drive window: max_distance_m must be finite and >= 0, got " +
                 std::to_string(window.max_distance_m));
@@ -21,6 +19,8 @@ void check_window(const DriveWindowOptions& window) {
   }
   if (window.max_firings < 1) throw Error("drive window: max_firings must be at least 1");
 }
+
+namespace {
 
 /// Throws unless every firing has finite odometry and readings the ring accepts.
 void check_drive(const SonarRing& ring, const std::vector<OdometryFiring>& drive) {
@@ -86,7 +86,7 @@ SonarSpec remount(const SonarSpec& spec, const Pose2& relative) {
 
 FusedFirings fuse_firings(const SonarRing& ring, const std::vector<OdometryFiring>& drive,
                           const DriveWindowOptions& window) {
-  check_window(window);
+  validate(window);
   check_drive(ring, drive);
   const KeptSpan span = kept_span(drive, window);
   const Pose2& latest = drive.back().odometry;

@@ -43,6 +43,9 @@ struct FusedFirings {
   double turn_rad = 0.0;       ///< sum of |heading changes| over that path
 };
 
+/// Checks the window's bounds; throws gridloc::Error naming the field.
+void validate(const DriveWindowOptions& window);
+
 /// The sonar `spec` of a robot at `relative` (its pose in the current robot frame), as a
 /// sonar of the current robot: the same cone in the world, its mount and axis moved by
 /// `relative`.

@@ -1,0 +1,80 @@
+#pragma once
+/// The Localizer: the facade a navigation stack links (issue 13). Built once from a map and
+/// the sonar ring, it is fed odometry and sonar firings as the robot drives and keeps the
+/// current Estimate: each firing is fused with the drive behind it (fuse_firings) and matched
+/// by the exact correlation search, globally until a fix, then in a window around the fix
+/// carried along by odometry.
+#include <Eigen/Core>
+#include <mutex>
+#include <optional>
+#include <shared_mutex>
+#include <vector>
+
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/sensors/drive_fusion.hpp"
+
+namespace gridloc {
+
+struct LocalizerOptions {
+  /// The search; its reach_m is raised to cover the ring along the whole drive window.
+  CorrelationOptions correlation;
+  /// Which past firings join the latest (distance, turn, count).
+  DriveWindowOptions drive;
+  /// The window around a prior spans this many standard deviations of its covariance...
+  double prior_sigmas = 3.0;
+  /// ...grown by the odometry's error since the prior: this share of the distance driven...
+  double odometry_error_per_m = 0.02;
+  /// ...and this heading error per metre driven (rad/m; 1 deg/m).
+  double odometry_turn_error_per_m = 0.017453292519943295;
+  double min_half_xy_m = 0.3;    ///< the window's half side is at least this...
+  double max_half_xy_m = 2.0;    ///< ...and at most this (beyond: localize globally)
+  double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this
+};
+
+/// What the Localizer holds between calls (see Localizer).
+struct LocalizerState {
+  std::optional<Pose2> odometry;      ///< the latest odometry pose
+  std::vector<OdometryFiring> drive;  ///< firings within the drive window, oldest first
+  std::optional<Pose2> prior;         ///< the pose believed at `prior_odometry`, world frame
+  Eigen::Matrix3d prior_covariance = Eigen::Matrix3d::Zero();
+  Pose2 prior_odometry;              ///< the odometry pose the prior was given at
+  std::optional<Estimate> estimate;  ///< the latest firing's estimate
+};
+
+/// Thread safety: one writer (reset, set_prior, add_odometry, add_observation), any number
+/// of readers (estimate) at the same time; the answer does not depend on
+/// CorrelationOptions::threads.
+class Localizer {
+ public:
+  /// Precomputes the global grids once; throws gridloc::Error for a bad map, ring or options.
+  Localizer(OccupancyMap map, SonarRing ring, LocalizerOptions options = {});
+
+  /// Forgets the drive, the prior and the estimate: the next firing localizes globally.
+  void reset();
+  /// The robot is at `pose` (world frame) with `covariance` of (x, y, theta) now, at the
+  /// latest odometry pose. Throws for a non-finite pose or a covariance whose diagonal is
+  /// negative or not finite.
+  void set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance);
+  /// The robot's odometry pose now (any fixed odometry frame); firings are taken here.
+  void add_odometry(const Pose2& odometry);
+  /// A firing of the ring at the latest odometry pose (the odometry origin when none was
+  /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
+  /// with the drive and localizes. A `localized` answer becomes the prior of the next firing.
+  /// Throws gridloc::Error for bad readings (the state is then unchanged).
+  void add_observation(double time_s, const std::vector<double>& driver_ranges);
+  /// The latest firing's estimate (pose, covariance, verdict, hypotheses); gridloc::Error
+  /// before the first firing.
+  Estimate estimate() const;
+
+  const CorrelationEstimator& estimator() const { return estimator_; }
+
+ private:
+  SearchWindow window_now(const LocalizerState& state) const;
+
+  LocalizerOptions options_;
+  CorrelationEstimator estimator_;
+  mutable std::shared_mutex mutex_;
+  LocalizerState state_;
+};
+
+}  // namespace gridloc
