@@ -1,7 +1,8 @@
 // gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}, or over the
 // estimators (--estimators), with the sonar ring or a simulated laser (--laser); on polygon
-// maps, or with a sector estimator, the sector protocol (eval_sectors.cpp). The options and
-// their checks, then the run; eval_output.cpp prints the results.
+// maps, or with a sector estimator, the sector protocol (eval_sectors.cpp); with --drive, the
+// drive protocol (eval_drive.cpp). The options and their checks, then the run;
+// eval_output.cpp prints the results.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "eval_drive.hpp"
 #include "eval_output.hpp"
 #include "eval_sectors.hpp"
 #include "gridloc/grids/error.hpp"
@@ -146,12 +148,13 @@ EvalOptions eval_options(const EvalArgs& args) {
   return options;
 }
 
-void run(const EvalArgs& args) {
+void run(const EvalArgs& args, const DriveArgs& drive) {
   check_step(args.step_xy);
   // Polygon maps or a sector estimator: the sector protocol.
   const bool sector_estimators = names_a_sector_estimator(args.estimators);
   const std::vector<std::string> files = map_files(args, sector_estimators);
   if (polygon_maps(files, sector_estimators)) return run_sectors(args, files);
+  if (drive.drive_m != 0.0) return run_drive_eval(args, drive, files);
 
   const EvalOptions options = eval_options(args);
   std::vector<EvalMap> maps;
@@ -217,7 +220,9 @@ void add_eval(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--trials-out", args->trials_out,
                   "write every trial (errors, scores, confidence, std) to this CSV");
-  cmd->callback([args] { run(*args); });
+  auto drive = std::make_shared<DriveArgs>();
+  add_drive_options(cmd, *drive);
+  cmd->callback([args, drive] { run(*args, *drive); });
 }
 
 }  // namespace gridloc::cli

@@ -234,6 +234,30 @@ TEST_F(Cli, GlobalLocalizationWithoutPrior) {
                    "--scan");
 }
 
+TEST_F(Cli, EvalDriveComparesTheDriveWithTheLastFiring) {
+  const CliRun r = run_cli(dir,
+                           "eval --drive 1.5 --drive-firings 4 --trials 3 --maps room_l "
+                           "--json --quiet --seed 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("protocol"), "drive");
+  EXPECT_EQ(j.at("drive_m").get<double>(), 1.5);
+  EXPECT_EQ(j.at("firings").get<int>(), 4);
+  EXPECT_EQ(j.at("global").get<bool>(), true);
+  ASSERT_EQ(j.at("maps").size(), 1u);
+  for (const char* way : {"standstill", "drive"}) {
+    const auto& tally = j.at("maps")[0].at(way);
+    const int verdicts = tally.at("localized").get<int>() + tally.at("ambiguous").get<int>() +
+                         tally.at("not_localized").get<int>();
+    EXPECT_EQ(verdicts, 3) << way;
+    EXPECT_LE(tally.at("confident_wrong").get<int>(), tally.at("localized").get<int>()) << way;
+  }
+  expect_cli_error(run_cli(dir, "eval --drive 2 --noisy --trials 1"), {"--drive", "--noisy"});
+  expect_cli_error(run_cli(dir, "eval --drive 2 --odometry-noise 5 --trials 1"),
+                   {"--odometry-noise", "FRAC,DEG_PER_M"});
+  expect_cli_error(run_cli(dir, "eval --drive 30 --trials 1"), {"drive_m"});
+}
+
 TEST_F(Cli, EvalJson) {
   const CliRun r = run_cli(dir, "eval --trials 2 --maps room_rect --json --quiet");
   ASSERT_EQ(r.status, 0) << r.err;

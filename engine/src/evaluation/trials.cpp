@@ -65,13 +65,24 @@ Pose2 clamped_onto_map(const Pose2& center, const GridGeometry& geometry) {
           std::clamp(g.y, eps, geometry.height * geometry.resolution - eps), g.theta};
 }
 
+/// The cells around a pose that footprint_clear must look at.
+int footprint_reach(const OccupancyMap& map, const SonarRing& ring, double clearance) {
+  double radius = clearance;
+  for (const auto& p : ring.footprint.polygon) radius = std::max(radius, p.norm() + clearance);
+  return static_cast<int>(std::ceil(radius / map.geometry.resolution)) + 1;
+}
+
 }  // namespace
+
+bool pose_is_free(const OccupancyMap& map, const SonarRing& ring, const Pose2& pose,
+                  double clearance) {
+  return footprint_clear(map, ring.footprint, map.geometry.to_grid_frame(pose),
+                         footprint_reach(map, ring, clearance), clearance);
+}
 
 Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng) {
   const GridGeometry& geometry = map.geometry;
-  double radius = clearance;
-  for (const auto& p : ring.footprint.polygon) radius = std::max(radius, p.norm() + clearance);
-  const int reach = static_cast<int>(std::ceil(radius / geometry.resolution)) + 1;
+  const int reach = footprint_reach(map, ring, clearance);
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const Pose2 local{rng.uniform(0.0, geometry.width * geometry.resolution),
                       rng.uniform(0.0, geometry.height * geometry.resolution),

@@ -14,6 +14,11 @@ namespace gridloc {
 /// cells. Throws gridloc::Error when none is found in many attempts.
 Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng);
 
+/// Whether the footprint of `ring` at world pose `pose`, grown by `clearance`, covers only
+/// free cells: the test sample_free_pose draws against.
+bool pose_is_free(const OccupancyMap& map, const SonarRing& ring, const Pose2& pose,
+                  double clearance);
+
 /// `map` with 2-4 boxes (0.3-0.8 m) added on free cells at least `keep_clear` m from
 /// `keep`: furniture the known map does not have.
 OccupancyMap add_furniture(const OccupancyMap& map, const Pose2& keep, double keep_clear, Rng& rng);

@@ -1,0 +1,153 @@
+// gridloc eval --drive: the drive protocol's options, run, table and JSON.
+#include "eval_drive.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "gridloc/engine/evaluation/drive_protocol.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+/// FRAC,DEG_PER_M of --odometry-noise.
+void parse_odometry_noise(const std::string& text, DriveEvalOptions& options) {
+  const std::size_t comma = text.find(',');
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument(text);
+    std::size_t used = 0;
+    options.odometry_noise_frac = std::stod(text.substr(0, comma), &used);
+    const std::string rest = text.substr(comma + 1);
+    std::size_t used_rest = 0;
+    options.odometry_noise_rad_per_m = deg2rad(std::stod(rest, &used_rest));
+    if (used != comma || used_rest != rest.size()) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    throw Error("--odometry-noise must be FRAC,DEG_PER_M (e.g. 0.02,1), not '" + text + "'");
+  }
+}
+
+/// Refuses the other protocols' options: they do not apply to a drive.
+void check_args(const EvalArgs& args) {
+  if (args.noisy || args.echo_filter || args.laser.enabled || !args.estimators.empty() ||
+      !args.trials_out.empty()) {
+    throw Error(
+        "--drive runs the drive protocol (the sonar ring, the correlation search): "
+        "--noisy, --echo-filter, --laser, --estimators and --trials-out do not apply");
+  }
+}
+
+DriveEvalOptions drive_options(const EvalArgs& args, const DriveArgs& drive) {
+  DriveEvalOptions options;
+  options.trials = args.trials;
+  options.seed = args.seed;
+  options.drive_m = drive.drive_m;
+  options.firings = drive.firings;
+  options.global = !drive.windowed;
+  options.fusion.max_distance_m = drive.window_m;
+  parse_odometry_noise(drive.odometry_noise, options);
+  args.search.apply(options.search);
+  options.search.resolution = options.window.step_xy = args.step_xy;
+  if (args.noise == "none") {
+    options.noise = SonarSimOptions{};
+  } else if (args.noise != "realistic") {
+    throw Error("--noise must be realistic or none, not '" + args.noise + "'");
+  }
+  return options;
+}
+
+nlohmann::json tally_json(const DriveEvalTally& tally, int trials) {
+  return {{"success_rate", static_cast<double>(tally.successes) / trials},
+          {"successes", tally.successes},
+          {"localized", tally.localized},
+          {"ambiguous", tally.ambiguous},
+          {"not_localized", tally.not_localized},
+          {"confident_wrong", tally.confident_wrong},
+          {"median_ms", tally.median_ms}};
+}
+
+void print_json(const DriveEvalOptions& options, const DriveEvalReport& report) {
+  nlohmann::json maps = nlohmann::json::array();
+  for (const DriveEvalRow& row : report.maps) {
+    maps.push_back({{"map", row.map},
+                    {"trials", row.trials},
+                    {"standstill", tally_json(row.standstill, row.trials)},
+                    {"drive", tally_json(row.drive, row.trials)}});
+  }
+  const nlohmann::json out = {{"protocol", "drive"},
+                              {"drive_m", options.drive_m},
+                              {"firings", options.firings},
+                              {"odometry_noise",
+                               {{"frac", options.odometry_noise_frac},
+                                {"deg_per_m", rad2deg(options.odometry_noise_rad_per_m)}}},
+                              {"drive_window_m", options.fusion.max_distance_m},
+                              {"global", options.global},
+                              {"seed", options.seed},
+                              {"trials_per_map", options.trials},
+                              {"maps", maps}};
+  std::cout << out.dump(2) << "\n";
+}
+
+void print_tally(const char* label, const DriveEvalTally& tally, int trials) {
+  std::printf("  %-12s %6.1f %%   %4d / %4d / %4d   %4d   %8.1f\n", label,
+              100.0 * tally.successes / trials, tally.localized, tally.ambiguous,
+              tally.not_localized, tally.confident_wrong, tally.median_ms);
+}
+
+void print_table(const DriveEvalOptions& options, const DriveEvalReport& report) {
+  std::printf(
+      "gridloc eval --drive: %.1f m straight drive, %d firings, odometry noise %.1f %% + %.1f "
+      "deg/m, %s, seed %llu, %d trials per map\n",
+      options.drive_m, options.firings, 100.0 * options.odometry_noise_frac,
+      rad2deg(options.odometry_noise_rad_per_m),
+      options.global ? "global (no prior)" : "seed 001's window", (unsigned long long)options.seed,
+      options.trials);
+  for (const DriveEvalRow& row : report.maps) {
+    std::printf("%s\n  %-12s %8s   %-18s   %4s   %8s\n", row.map.c_str(), "", "success",
+                "loc. / amb. / not", "conf. wrong", "median ms");
+    print_tally("last firing", row.standstill, row.trials);
+    print_tally("drive", row.drive, row.trials);
+  }
+}
+
+}  // namespace
+
+void add_drive_options(CLI::App* cmd, DriveArgs& drive) {
+  cmd->add_option("--drive", drive.drive_m,
+                  "the drive protocol: a straight drive of this many metres before the last "
+                  "firing, fused, against the last firing alone (0 = off)");
+  cmd->add_option("--drive-firings", drive.firings, "--drive: firings along the drive")
+      ->capture_default_str();
+  cmd->add_option("--odometry-noise", drive.odometry_noise,
+                  "--drive: odometry error FRAC,DEG_PER_M (length share, heading drift per metre)")
+      ->capture_default_str();
+  cmd->add_flag("--drive-windowed", drive.windowed,
+                "--drive: search seed 001's window around a prior instead of the whole map");
+  cmd->add_option("--drive-window-m", drive.window_m,
+                  "--drive: fuse the firings within this path length of the last (m)")
+      ->capture_default_str();
+}
+
+void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,
+                    const std::vector<std::string>& files) {
+  check_args(args);
+  const DriveEvalOptions options = drive_options(args, drive);
+  std::vector<EvalMap> maps;
+  for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
+  const SonarRing ring = load_sonar_ring(args.ring);
+  const DriveEvalReport report =
+      run_drive_evaluation(maps, ring, options, [&](int done, int total) {
+        if (!args.quiet) std::fprintf(stderr, "\r[eval --drive] %d/%d trials", done, total);
+        if (!args.quiet && done == total) std::fprintf(stderr, "\n");
+      });
+  if (args.json) {
+    print_json(options, report);
+  } else {
+    print_table(options, report);
+  }
+}
+
+}  // namespace gridloc::cli
