@@ -19,6 +19,10 @@ struct LocalizationArgs {
   SearchWindow window;
   int levels = 3;
   bool whole_map = false;  ///< --global
+  /// --step-xy / --step-theta on the command line. A scan's defaults follow the map and the
+  /// scan instead of seed 001's sonar lattice: the map's cell, and the heading step that
+  /// moves the farthest return by half a cell (by one cell under --global, for speed).
+  bool step_xy_given = false, step_theta_given = false;
 
   /// Registers --map, the OctoMap band, --ring, --readings, --scan, --max-range, --prior,
   /// --global (with `global_help`), the window, --local, --global-grid, --levels and the

@@ -293,6 +293,36 @@ std::string write_scan_csv(test::TempDir& dir, const std::string& name, const Ra
   return dir.write(name, csv);
 }
 
+TEST_F(Cli, AScansDefaultLatticeFollowsTheMapAndTheScan) {
+  // On the 5 cm apartment map, without --step-xy / --step-theta: the map's cell and the
+  // heading step that moves the farthest return by half a cell, not seed 001's 10 cm x 5 deg.
+  const std::string map_file = test::map_path("apartment_small");
+  const OccupancyMap m = load_ros_map(map_file);
+  const Pose2 truth{6.5, 4.5, -2.0};
+  const std::string scan =
+      write_scan_csv(dir, "apartment.csv", simulate_scan(m, truth, 360, 8.0, 0.01, 3));
+  const CliRun r = run_cli(dir, "localize --map " + quote(map_file) + " --scan " + quote(scan) +
+                                    " --prior 6.8,4.2,-1.7");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double lattice_x = j.at("lattice").at("pose").at("x");
+  EXPECT_NEAR(std::remainder(lattice_x - 0.025 + 0.5, 0.05), 0.0, 1e-6) << r.out;  // cell centre
+  // The truth lies on a cell corner, the lattice's worst case: 2.5 cm off along each axis.
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - truth.x,
+                       j.at("pose").at("y").get<double>() - truth.y),
+            0.04)
+      << r.out;
+  EXPECT_LE(std::abs(normalize_angle(j.at("pose").at("theta").get<double>() - truth.theta)),
+            deg2rad(0.3))
+      << r.out;
+  // Given steps are kept: seed 001's lattice lands on 10 cm cells.
+  const CliRun coarse = run_cli(dir, "localize --map " + quote(map_file) + " --scan " +
+                                         quote(scan) + " --prior 6.8,4.2,-1.7 --step-xy 0.1");
+  ASSERT_EQ(coarse.status, 0) << coarse.err;
+  const double coarse_x = nlohmann::json::parse(coarse.out).at("lattice").at("pose").at("x");
+  EXPECT_NEAR(std::remainder(coarse_x - 0.05 + 0.5, 0.1), 0.0, 1e-6) << coarse.out;
+}
+
 TEST_F(Cli, LocalizeWithIcpOnALaserScan) {
   // A 360-beam scan simulated on the small apartment, written as angle,range lines.
   const std::string map_file = test::map_path("apartment_small");
