@@ -94,7 +94,9 @@ void place_winner(Estimate& e, const WindowSearch& search, const GridGeometry& g
     // Branch and bound already built the lattice headings' grids: refinement reuses them.
     std::function<const PlacedLocalGrid*(int)> built;
     if (search.grids) built = [&](int it) { return &search.grids->placed(it); };
-    const RefinedPose refined = refine(best, search.lattice, search.finest(), 4, built);
+    const LatticePose start =
+        centre_of_heading_ties(best, search.lattice, search.finest(), 8, built);
+    const RefinedPose refined = refine(start, search.lattice, search.finest(), 4, built);
     e.pose = lattice_to_world(geometry, search.lattice, res, refined.ix, refined.iy, refined.it);
   }
 }

@@ -379,6 +379,25 @@ double parabola_vertex(double a, double b, double c) {
 
 }  // namespace
 
+LatticePose centre_of_heading_ties(
+    const LatticePose& best, const Lattice& lattice, const SearchLevel& finest, int max_steps,
+    const std::function<const PlacedLocalGrid*(int it)>& lattice_grid) {
+  const auto ties = [&](int it) {
+    if (it < 0 || it >= lattice.headings) return false;
+    const PlacedLocalGrid* built = lattice_grid ? lattice_grid(it) : nullptr;
+    const double s =
+        built ? score(*finest.global, *built, best.ix, best.iy)
+              : score(*finest.global, place_heading(finest, lattice.theta(it)), best.ix, best.iy);
+    return s == best.score;
+  };
+  int low = best.it, high = best.it;
+  while (best.it - low < max_steps && ties(low - 1)) --low;
+  while (high - best.it < max_steps && ties(high + 1)) ++high;
+  LatticePose centre = best;
+  centre.it = low + (high - low) / 2;
+  return centre;
+}
+
 RefinedPose refine(const LatticePose& best, const Lattice& lattice, const SearchLevel& finest,
                    int subdivisions,
                    const std::function<const PlacedLocalGrid*(int it)>& lattice_grid) {

@@ -197,6 +197,15 @@ struct RefinedPose {
   double score = 0.0;  ///< score at the best sub-lattice pose (before the parabola)
 };
 
+/// The middle of the run of lattice headings at the winner's cell that score exactly as much
+/// as the winner (at most `max_steps` each way): with integer scores (hits) a scan often ties
+/// over several headings, and the search's lowest-index winner sits at the run's start, where
+/// refinement's parabola cannot reach the middle. The score is unchanged; the winner's own
+/// pose when nothing ties. `lattice_grid` as for refine().
+LatticePose centre_of_heading_ties(
+    const LatticePose& best, const Lattice& lattice, const SearchLevel& finest, int max_steps = 8,
+    const std::function<const PlacedLocalGrid*(int it)>& lattice_grid = {});
+
 /// Sub-cell refinement of the lattice winner, on the finest level: the winner's cell and its
 /// 8 neighbours are scored at headings within +-1 lattice step in steps of 1/`subdivisions`;
 /// the best of these is refined by a parabola through its neighbours along x, y and heading
