@@ -15,7 +15,7 @@ struct DriveArgs {
   int firings = 5;
   std::string odometry_noise = "0.02,1";  ///< FRAC,DEG_PER_M
   bool windowed = false;                  ///< a prior window instead of global search
-  double window_m = 3.0;                  ///< DriveWindowOptions::max_distance_m
+  double window_m = 2.0;                  ///< DriveWindowOptions::max_distance_m
 };
 
 /// Registers --drive, --drive-firings, --odometry-noise, --drive-windowed, --drive-window-m.

@@ -169,7 +169,9 @@ TEST(DriveSearch, ACorridorAmbiguousFromOneFiringIsResolvedByADrive) {
   EXPECT_EQ(alone.alternatives[0].score, alone.alternatives[1].score);
 
   // The drive: the recess its first firings saw pins the place and the heading.
-  const FusedFirings fused = fuse_firings(ring(), drive);
+  DriveWindowOptions window;
+  window.max_distance_m = 3.0;  // exact odometry: the whole drive
+  const FusedFirings fused = fuse_firings(ring(), drive, window);
   ASSERT_EQ(fused.firings, 7u);
   const CorrelationEstimator driving(map, fused.ring);
   const Observation all{fused.ranges};
