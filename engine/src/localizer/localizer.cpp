@@ -83,8 +83,12 @@ void Localizer::add_odometry(const Pose2& odometry) {
 void Localizer::add_observation(double time_s, const std::vector<double>& driver_ranges) {
   if (!std::isfinite(time_s)) throw Error("localizer: observation time must be finite");
   const DriverReadings readings = from_driver(estimator_.ring(), driver_ranges);
-  std::unique_lock lock(mutex_);
-  LocalizerState next = state_;
+  LocalizerState next;
+  {
+    std::shared_lock lock(mutex_);  // the only writer: the state cannot change meanwhile
+    next = state_;
+  }
+  // The search runs without the lock, so readers get the previous estimate meanwhile.
   next.drive.push_back({next.odometry.value_or(Pose2{}), readings.ranges, readings.rejected});
   prune_drive(next.drive, estimator_.ring(), options_.drive);
   const FusedFirings fused = fuse_firings(estimator_.ring(), next.drive, options_.drive);
@@ -96,6 +100,7 @@ void Localizer::add_observation(double time_s, const std::vector<double>& driver
     next.prior_odometry = next.drive.back().odometry;
   }
   next.estimate = e;
+  std::unique_lock lock(mutex_);
   state_ = std::move(next);
 }
 

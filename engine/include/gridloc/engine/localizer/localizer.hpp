@@ -42,8 +42,8 @@ struct LocalizerState {
 };
 
 /// Thread safety: one writer (reset, set_prior, add_odometry, add_observation), any number
-/// of readers (estimate) at the same time; the answer does not depend on
-/// CorrelationOptions::threads.
+/// of readers (estimate) at the same time; readers get the previous estimate while a firing
+/// is being localized. The answer does not depend on CorrelationOptions::threads.
 class Localizer {
  public:
   /// Precomputes the global grids once; throws gridloc::Error for a bad map, ring or options.
@@ -60,7 +60,8 @@ class Localizer {
   /// A firing of the ring at the latest odometry pose (the odometry origin when none was
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
   /// with the drive and localizes. A `localized` answer becomes the prior of the next firing.
-  /// Throws gridloc::Error for bad readings (the state is then unchanged).
+  /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
+  /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
   /// The latest firing's estimate (pose, covariance, verdict, hypotheses); gridloc::Error
   /// before the first firing.
