@@ -54,16 +54,21 @@ std::vector<Pose2> draw_path(const OccupancyMap& map, const SonarRing& ring,
               std::to_string(options.drive_m) + " m on this map");
 }
 
-/// The odometry of `path`: each step's length off by a share and its heading drifting, so the
-/// error grows with the distance driven; the first pose is the odometry's origin.
+/// The odometry of `path`, off as a miscalibrated one is: one length scale and one heading
+/// drift per metre drawn for the trial (sigma: the options' share and rate), applied to every
+/// step, so the error grows with the distance driven whatever the number of firings. The
+/// first pose is the odometry's origin.
 std::vector<Pose2> drifting_odometry(const std::vector<Pose2>& path,
                                      const DriveEvalOptions& options, Rng& rng) {
+  const double scale = 1.0 + options.odometry_noise_frac * rng.gaussian();
+  const double drift_per_m = options.odometry_noise_rad_per_m * rng.gaussian();
   std::vector<Pose2> odometry{path.front()};
   for (std::size_t k = 1; k < path.size(); ++k) {
     Pose2 step = relative_pose(path[k - 1], path[k]);
     const double length = std::hypot(step.x, step.y);
-    step.x *= 1.0 + options.odometry_noise_frac * rng.gaussian();
-    step.theta += options.odometry_noise_rad_per_m * length * rng.gaussian();
+    step.x *= scale;
+    step.y *= scale;
+    step.theta += drift_per_m * length;
     odometry.push_back(compose(odometry.back(), step));
   }
   return odometry;
@@ -83,11 +88,11 @@ DriveTrial draw_trial(const OccupancyMap& map, const SonarRing& ring,
   return trial;
 }
 
-/// The search's options with the reach covering the longest fused drive (odometry may
-/// stretch the path by a few per cent).
+/// The search's options with the reach covering every fused drive: a re-mounted sonar lies
+/// at most the fusion window's path length farther out than on the robot.
 CorrelationOptions search_options(const DriveEvalOptions& options, const SonarRing& ring) {
   CorrelationOptions search = options.search;
-  search.reach_m = std::max(search.reach_m, ring.reach() + 1.25 * options.drive_m + 0.1);
+  search.reach_m = std::max(search.reach_m, ring.reach() + options.fusion.max_distance_m);
   return search;
 }
 

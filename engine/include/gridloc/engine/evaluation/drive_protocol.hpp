@@ -2,8 +2,8 @@
 /// The drive protocol (issue 13): the wheelchair drives a short straight path after the
 /// switch to autonomous mode, firing its ring along the way; the fused drive is localized
 /// (sensors/drive_fusion.hpp) against the single firing at the end of the path, on the same
-/// trials. Odometry drifts (seeded): a share of each step's length along the path and a
-/// heading error per metre.
+/// trials. Odometry drifts (seeded) as a miscalibrated one does: one length scale and one
+/// heading drift per metre per trial.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -22,8 +22,8 @@ struct DriveEvalOptions {
   double clearance_m = 0.25;          ///< free space around the footprint at every pose of the path
   double drive_m = 2.0;               ///< length of the straight path, the last firing at its end
   int firings = 5;                    ///< along the path, evenly spaced (>= 2)
-  double odometry_noise_frac = 0.02;  ///< sigma of each step's length error, per metre
-  double odometry_noise_rad_per_m = 0.0174532925199;  ///< sigma of the heading drift per metre
+  double odometry_noise_frac = 0.02;  ///< sigma of the trial's length scale error (a share)
+  double odometry_noise_rad_per_m = 0.0174532925199;  ///< sigma of its heading drift (rad/m)
   /// No prior (global search) when true; otherwise seed 001's window around a prior drawn
   /// within it (perturb_prior), the same for both.
   bool global = true;
