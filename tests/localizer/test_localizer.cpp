@@ -83,6 +83,37 @@ TEST(Localizer, ResetForgetsTheDriveAndThePrior) {
   EXPECT_LE(position_error(localizer.estimate(), truth), 0.10);
 }
 
+TEST(Localizer, ResetKeepsTheOdometryPose) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
+  Localizer localizer(map, ring());
+  const Pose2 truth{2.0, 1.5, 0.5};
+  localizer.add_odometry({1.0, 0.0, 0.0});
+  localizer.reset();
+  localizer.set_prior(truth, Eigen::Matrix3d::Identity() * 1e-4);  // at odometry (1, 0, 0)
+  localizer.add_odometry({1.0, 0.0, 0.0});                         // not moved
+  localizer.add_observation(0.0, driver_firing(map, truth));
+  EXPECT_LE(position_error(localizer.estimate(), truth), 0.10);
+}
+
+TEST(Localizer, AWrongPriorIsDroppedAfterFiringsThatDoNotLocalize) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
+  LocalizerOptions options;
+  options.misses_before_global = 2;
+  Localizer localizer(map, ring(), options);
+  const Pose2 truth{2.0, 1.5, 0.5};
+  localizer.set_prior({4.5, 3.5, -2.0}, Eigen::Matrix3d::Identity() * 0.01);  // wrong
+  std::vector<Verdict> verdicts;
+  for (int k = 0; k < 3; ++k) {
+    localizer.add_observation(k, driver_firing(map, truth));
+    verdicts.push_back(localizer.estimate().verdict);
+  }
+  EXPECT_NE(verdicts[0], Verdict::Localized);
+  EXPECT_NE(verdicts[1], Verdict::Localized);
+  // Two misses: the third firing searched the whole map.
+  EXPECT_LE(position_error(localizer.estimate(), truth), 0.10);
+  EXPECT_EQ(verdicts[2], Verdict::Localized);
+}
+
 TEST(Localizer, BadInputIsRefusedAndLeavesTheStateAsItWas) {
   const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
   Localizer localizer(map, ring());
@@ -98,13 +129,22 @@ TEST(Localizer, BadInputIsRefusedAndLeavesTheStateAsItWas) {
       },
       {"covariance"});
   test::expect_error([&] { localizer.add_observation(std::nan(""), firing); }, {"time"});
-  EXPECT_EQ(localizer.estimate().pose.x, before.pose.x);
+  const Estimate after = localizer.estimate();
+  EXPECT_EQ(after.pose.x, before.pose.x);
+  EXPECT_EQ(after.pose.y, before.pose.y);
+  EXPECT_EQ(after.score, before.score);
   LocalizerOptions options;
   options.drive.max_firings = 0;
   test::expect_error([&] { Localizer bad(map, ring(), options); }, {"max_firings"});
   options = {};
   options.max_half_xy_m = 0.1;
-  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"max_half_xy_m"});
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"max_half_xy_m", "0.1"});
+  options = {};
+  options.prior_sigmas = -1.0;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"prior_sigmas", "-1"});
+  options = {};
+  options.misses_before_global = 0;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"misses_before_global"});
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <utility>
 
 #include "gridloc/grids/error.hpp"
@@ -12,29 +13,43 @@
 namespace gridloc {
 namespace {
 
+/// Throws naming `field` and its value unless `ok`.
+void require(bool ok, const char* field, double value, const char* rule) {
+  if (ok) return;
+  std::ostringstream message;
+  message << "localizer options: " << field << " = " << value << " " << rule;
+  throw Error(message.str());
+}
+
+/// Throws unless the options are usable; runs before the global grids are built.
+const LocalizerOptions& checked(const LocalizerOptions& options) {
+  const auto finite_at_least = [](double v, double low) { return std::isfinite(v) && v >= low; };
+  require(finite_at_least(options.prior_sigmas, 0.0) && options.prior_sigmas > 0.0, "prior_sigmas",
+          options.prior_sigmas, "must be finite and > 0");
+  require(finite_at_least(options.odometry_error_per_m, 0.0), "odometry_error_per_m",
+          options.odometry_error_per_m, "must be finite and >= 0");
+  require(finite_at_least(options.odometry_turn_error_per_m, 0.0), "odometry_turn_error_per_m",
+          options.odometry_turn_error_per_m, "must be finite and >= 0");
+  require(finite_at_least(options.min_half_xy_m, 0.0) && options.min_half_xy_m > 0.0,
+          "min_half_xy_m", options.min_half_xy_m, "must be finite and > 0");
+  require(finite_at_least(options.max_half_xy_m, options.min_half_xy_m), "max_half_xy_m",
+          options.max_half_xy_m, "must be finite and >= min_half_xy_m");
+  require(options.min_half_theta > 0.0 && options.min_half_theta <= std::numbers::pi,
+          "min_half_theta", options.min_half_theta, "must lie in (0, pi]");
+  require(options.misses_before_global >= 1, "misses_before_global", options.misses_before_global,
+          "must be at least 1");
+  require(finite_at_least(options.max_range_slack_m, 0.0), "max_range_slack_m",
+          options.max_range_slack_m, "must be finite and >= 0");
+  validate(options.drive);
+  return options;
+}
+
 /// The search options with the reach raised to cover every firing of the drive window: a
 /// re-mounted sonar lies at most the path's length farther out than on the robot.
 CorrelationOptions with_drive_reach(const LocalizerOptions& options, const SonarRing& ring) {
-  if (!(options.drive.max_distance_m >= 0.0) || !std::isfinite(options.drive.max_distance_m)) {
-    throw Error("localizer options: drive.max_distance_m must be finite and >= 0");
-  }
   CorrelationOptions correlation = options.correlation;
   correlation.reach_m = std::max(correlation.reach_m, ring.reach() + options.drive.max_distance_m);
   return correlation;
-}
-
-/// Throws unless the window options are usable.
-void check_options(const LocalizerOptions& options) {
-  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  const auto non_negative = [](double v) { return v >= 0.0 && std::isfinite(v); };
-  if (!positive(options.prior_sigmas) || !non_negative(options.odometry_error_per_m) ||
-      !non_negative(options.odometry_turn_error_per_m) || !positive(options.min_half_xy_m) ||
-      !(options.max_half_xy_m >= options.min_half_xy_m) || !std::isfinite(options.max_half_xy_m) ||
-      !(options.min_half_theta > 0.0 && options.min_half_theta <= std::numbers::pi)) {
-    throw Error(
-        "localizer options: prior_sigmas, min_half_xy_m and min_half_theta (<= pi) must be > 0, "
-        "the odometry errors >= 0 and max_half_xy_m >= min_half_xy_m, all finite");
-  }
 }
 
 bool finite(const Pose2& pose) {
@@ -48,59 +63,86 @@ void prune_drive(std::vector<OdometryFiring>& drive, const SonarRing& ring,
   drive.erase(drive.begin(), drive.end() - static_cast<std::ptrdiff_t>(kept));
 }
 
+/// Whether a world pose lies on the map's grid.
+bool on_map(const OccupancyMap& map, const Pose2& pose) {
+  const Pose2 local = map.geometry.to_grid_frame(pose);
+  const Cell cell = map.geometry.cell_of(local.x, local.y);
+  return map.geometry.contains(cell.ix, cell.iy);
+}
+
+/// The state after a firing's estimate: a `localized` fix becomes the prior (the path is
+/// counted from it); too many answers in a row that are not drop the prior.
+void take_estimate(LocalizerState& state, const Estimate& e, int misses_before_global) {
+  state.estimate = e;
+  if (e.verdict == Verdict::Localized) {
+    state.prior = e.pose;
+    state.prior_covariance = e.covariance;
+    state.prior_odometry = state.drive.back().odometry;
+    state.travelled_m = 0.0;
+    state.misses = 0;
+  } else if (++state.misses >= misses_before_global) {
+    state.prior.reset();
+    state.misses = 0;
+  }
+}
+
 }  // namespace
 
 Localizer::Localizer(OccupancyMap map, SonarRing ring, LocalizerOptions options)
-    : options_(options), estimator_(std::move(map), ring, with_drive_reach(options, ring)) {
-  check_options(options_);
-  validate(options_.drive);
-}
+    : options_(checked(options)),
+      estimator_(std::move(map), ring, with_drive_reach(options_, ring)) {}
 
 void Localizer::reset() {
   std::unique_lock lock(mutex_);
+  const std::optional<Pose2> odometry = state_.odometry;
   state_ = LocalizerState{};
+  state_.odometry = odometry;
 }
 
 void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) {
   if (!finite(pose)) throw Error("localizer: the prior pose must be finite");
-  for (int i = 0; i < 3; ++i) {
-    if (!(covariance(i, i) >= 0.0) || !std::isfinite(covariance(i, i))) {
-      throw Error("localizer: the prior covariance's diagonal must be finite and >= 0");
-    }
+  if (!covariance.allFinite() || (covariance.diagonal().array() < 0.0).any()) {
+    throw Error("localizer: the prior covariance must be finite with a diagonal >= 0");
   }
   std::unique_lock lock(mutex_);
   state_.prior = pose;
   state_.prior_covariance = covariance;
   state_.prior_odometry = state_.odometry.value_or(Pose2{});
+  state_.travelled_m = 0.0;
+  state_.misses = 0;
 }
 
 void Localizer::add_odometry(const Pose2& odometry) {
   if (!finite(odometry)) throw Error("localizer: odometry pose must be finite");
   std::unique_lock lock(mutex_);
+  if (state_.odometry) {
+    const Pose2 step = relative_pose(*state_.odometry, odometry);
+    state_.travelled_m += std::hypot(step.x, step.y);
+  }
   state_.odometry = odometry;
 }
 
 void Localizer::add_observation(double time_s, const std::vector<double>& driver_ranges) {
   if (!std::isfinite(time_s)) throw Error("localizer: observation time must be finite");
-  const DriverReadings readings = from_driver(estimator_.ring(), driver_ranges);
+  const DriverReadings readings =
+      from_driver(estimator_.ring(), driver_ranges, options_.max_range_slack_m);
   LocalizerState next;
   {
-    std::shared_lock lock(mutex_);  // the only writer: the state cannot change meanwhile
+    std::shared_lock lock(mutex_);
     next = state_;
   }
+  const double travelled_before = next.travelled_m;
   // The search runs without the lock, so readers get the previous estimate meanwhile.
   next.drive.push_back({next.odometry.value_or(Pose2{}), readings.ranges, readings.rejected});
   prune_drive(next.drive, estimator_.ring(), options_.drive);
   const FusedFirings fused = fuse_firings(estimator_.ring(), next.drive, options_.drive);
   const Observation observation{fused.ranges, std::nullopt, fused.rejected, fused.ring};
   const Estimate e = estimator_.estimate(observation, window_now(next));
-  if (e.verdict == Verdict::Localized) {
-    next.prior = e.pose;
-    next.prior_covariance = e.covariance;
-    next.prior_odometry = next.drive.back().odometry;
-  }
-  next.estimate = e;
+  take_estimate(next, e, options_.misses_before_global);
   std::unique_lock lock(mutex_);
+  // Odometry that arrived during the search is kept, with the path it added.
+  next.travelled_m += state_.travelled_m - travelled_before;
+  next.odometry = state_.odometry;
   state_ = std::move(next);
 }
 
@@ -111,24 +153,25 @@ Estimate Localizer::estimate() const {
 }
 
 /// The window around the prior carried to the latest odometry pose, grown by the odometry's
-/// error since; the global window without a prior or when that grows past max_half_xy_m.
+/// error over the path since; the global window without a prior, when that grows past
+/// max_half_xy_m, or when the carried prior has left the map.
 SearchWindow Localizer::window_now(const LocalizerState& state) const {
   const Observation probe{std::vector<double>(estimator_.ring().sonars.size(), 0.0)};
   if (!state.prior) return estimator_.global_window(probe);
-  const Pose2 odometry = state.drive.back().odometry;
-  const Pose2 moved = relative_pose(state.prior_odometry, odometry);
-  const double distance = std::hypot(moved.x, moved.y);
+  const Pose2 moved = relative_pose(state.prior_odometry, state.drive.back().odometry);
   const double sigma_xy =
       std::sqrt(std::max(state.prior_covariance(0, 0), state.prior_covariance(1, 1)));
   const double half_xy =
-      options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * distance;
-  if (half_xy > options_.max_half_xy_m) return estimator_.global_window(probe);
+      options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * state.travelled_m;
   SearchWindow window;
   window.center = compose(*state.prior, moved);
+  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) {
+    return estimator_.global_window(probe);
+  }
   window.step_xy = estimator_.options().resolution;
   window.half_xy = std::max(half_xy, options_.min_half_xy_m);
   const double half_theta = options_.prior_sigmas * std::sqrt(state.prior_covariance(2, 2)) +
-                            options_.odometry_turn_error_per_m * distance;
+                            options_.odometry_turn_error_per_m * state.travelled_m;
   window.half_theta = std::clamp(half_theta, options_.min_half_theta, std::numbers::pi);
   return window;
 }
