@@ -22,6 +22,10 @@ namespace {
 
 DriverReadings from_driver(const SonarRing& ring, const std::vector<double>& raw,
                            double max_range_slack_m) {
+  if (!(max_range_slack_m >= 0.0) || !std::isfinite(max_range_slack_m)) {
+    throw Error("driver readings: the max range slack must be finite and >= 0, got " +
+                std::to_string(max_range_slack_m));
+  }
   if (raw.size() != ring.sonars.size()) {
     throw Error("driver readings: expected " + std::to_string(ring.sonars.size()) +
                 " values (one per sonar of ring '" + ring.name + "'), got " +
@@ -39,7 +43,10 @@ DriverReadings from_driver(const SonarRing& ring, const std::vector<double>& raw
     } else if (value < 0.0) {
       refuse(i, value, "is negative");
     } else if (value > sonar.max_range + max_range_slack_m && std::isfinite(value)) {
-      refuse(i, value, "is beyond the sonar's max range (+inf means no echo)");
+      std::ostringstream why;
+      why << "is beyond the sonar's max range " << sonar.max_range << " m by more than "
+          << max_range_slack_m << " m (+inf means no echo)";
+      refuse(i, value, why.str().c_str());
     } else {
       readings.ranges[i] = std::min(value, sonar.max_range);
     }

@@ -37,6 +37,26 @@ TEST(DriverReadings, InfinitiesAndTooCloseAreReadingsNotErrors) {
   EXPECT_NO_THROW(validate_readings(ring(), readings.ranges, readings.rejected));
 }
 
+TEST(DriverReadings, TheBoundsThemselves) {
+  const SonarSpec& sonar = ring().sonars[0];
+  std::vector<double> raw(ring().sonars.size(), 2.0);
+  raw[0] = sonar.min_range;  // exactly the minimum: a reading
+  raw[1] = 0.0;              // touching: too close
+  raw[2] = sonar.max_range;  // exactly the maximum: no echo
+  raw[3] = sonar.max_range + 0.01;
+  const DriverReadings readings = from_driver(ring(), raw, 0.01);
+  EXPECT_FALSE(readings.rejected[0]);
+  EXPECT_EQ(readings.ranges[0], sonar.min_range);
+  EXPECT_TRUE(readings.rejected[1]);
+  EXPECT_EQ(readings.ranges[2], sonar.max_range);
+  EXPECT_EQ(readings.ranges[3], ring().sonars[3].max_range);
+  raw[3] = ring().sonars[3].max_range + 0.02;
+  test::expect_error([&] { from_driver(ring(), raw, 0.01); },
+                     {"sonar 3", "max range 6", "by more than 0.01"});
+  test::expect_error([&] { from_driver(ring(), raw, std::nan("")); }, {"slack"});
+  test::expect_error([&] { from_driver(ring(), raw, -1.0); }, {"slack"});
+}
+
 TEST(DriverReadings, NaNNegativeAndFarValuesAreErrorsNamingTheSonar) {
   std::vector<double> raw(ring().sonars.size(), 2.0);
   raw[6] = std::nan("");
