@@ -153,8 +153,15 @@ void run(const EvalArgs& args, const DriveArgs& drive) {
   // Polygon maps or a sector estimator: the sector protocol.
   const bool sector_estimators = names_a_sector_estimator(args.estimators);
   const std::vector<std::string> files = map_files(args, sector_estimators);
+  if (drive.given) {
+    if (sector_estimators || polygon_maps(files, false)) {
+      throw Error(
+          "--drive runs the drive protocol on grid maps with the sonar ring, not on "
+          "polygon maps or with a sector estimator");
+    }
+    return run_drive_eval(args, drive, files);
+  }
   if (polygon_maps(files, sector_estimators)) return run_sectors(args, files);
-  if (drive.drive_m != 0.0) return run_drive_eval(args, drive, files);
 
   const EvalOptions options = eval_options(args);
   std::vector<EvalMap> maps;

@@ -30,8 +30,15 @@ void parse_odometry_noise(const std::string& text, DriveEvalOptions& options) {
   }
 }
 
-/// Refuses the other protocols' options: they do not apply to a drive.
-void check_args(const EvalArgs& args) {
+/// Refuses the other protocols' options, and drive options out of range, by their flags.
+void check_args(const EvalArgs& args, const DriveArgs& drive) {
+  if (!(drive.drive_m > 0.0) || !(drive.drive_m <= 20.0)) {
+    throw Error("--drive must lie in (0, 20] m, got " + std::to_string(drive.drive_m));
+  }
+  if (drive.firings < 2) throw Error("--drive-firings must be at least 2");
+  if (!(drive.window_m >= 0.0) || !std::isfinite(drive.window_m)) {
+    throw Error("--drive-window-m must be finite and >= 0");
+  }
   if (args.noisy || args.echo_filter || args.laser.enabled || !args.estimators.empty() ||
       !args.trials_out.empty()) {
     throw Error(
@@ -116,24 +123,29 @@ void print_table(const DriveEvalOptions& options, const DriveEvalReport& report)
 }  // namespace
 
 void add_drive_options(CLI::App* cmd, DriveArgs& drive) {
-  cmd->add_option("--drive", drive.drive_m,
-                  "the drive protocol: a straight drive of this many metres before the last "
-                  "firing, fused, against the last firing alone (0 = off)");
+  CLI::Option* on = cmd->add_option("--drive", drive.drive_m,
+                                    "the drive protocol: a straight drive of this many metres "
+                                    "before the last firing, fused, against the last firing alone")
+                        ->each([&drive](const std::string&) { drive.given = true; });
   cmd->add_option("--drive-firings", drive.firings, "--drive: firings along the drive")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(on);
   cmd->add_option("--odometry-noise", drive.odometry_noise,
                   "--drive: odometry error FRAC,DEG_PER_M (length share, heading drift per metre)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(on);
   cmd->add_flag("--drive-windowed", drive.windowed,
-                "--drive: search seed 001's window around a prior instead of the whole map");
+                "--drive: search seed 001's window around a prior instead of the whole map")
+      ->needs(on);
   cmd->add_option("--drive-window-m", drive.window_m,
                   "--drive: fuse the firings within this path length of the last (m)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(on);
 }
 
 void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,
                     const std::vector<std::string>& files) {
-  check_args(args);
+  check_args(args, drive);
   const DriveEvalOptions options = drive_options(args, drive);
   std::vector<EvalMap> maps;
   for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});

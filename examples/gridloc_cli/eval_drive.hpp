@@ -9,13 +9,14 @@
 
 namespace gridloc::cli {
 
-/// The drive protocol's options of `gridloc eval` (off while drive_m is 0).
+/// The drive protocol's options of `gridloc eval` (off without --drive).
 struct DriveArgs {
   double drive_m = 0.0;
   int firings = 5;
   std::string odometry_noise = "0.02,1";  ///< FRAC,DEG_PER_M
   bool windowed = false;                  ///< a prior window instead of global search
   double window_m = 2.0;                  ///< DriveWindowOptions::max_distance_m
+  bool given = false;                     ///< --drive was on the command line
 };
 
 /// Registers --drive, --drive-firings, --odometry-noise, --drive-windowed, --drive-window-m.

@@ -85,6 +85,7 @@ Localization prepare_localization(const LocalizationArgs& args) {
   const SearchWindow whole = localization.estimator->global_window(localization.observation);
   if (args.whole_map) {
     localization.window = whole;
+    if (args.step_theta_given) localization.window.step_theta = args.window.step_theta;
   } else {
     localization.window.center = parse_pose(args.prior, "--prior");
     // Half the global search's step: the farthest return moves by half a cell. On the
