@@ -25,8 +25,8 @@ struct OdometryFiring {
 /// turn driven, so firings farther back along the path than these bounds are left out. The
 /// latest firing is always kept. 2 m: on the drive protocol (gridloc eval --drive 3
 /// --drive-firings 7 --drive-window-m W, engine/doc/correlation.md), with odometry off by
-/// 2 % + 1 deg/m, windows of 1 and 2 m gave no confident wrong answer in 300 trials and 3 m
-/// gave two; with 5 % + 3 deg/m, 2 m gave three and 1 m none.
+/// 2 % + 1 deg/m, 2 m gave the fewest ambiguous and confident wrong answers (1 and 1 in 300;
+/// 3 m: 6 confident wrong); with 5 % + 3 deg/m use 1 m (2 m: 25 confident wrong).
 struct DriveWindowOptions {
   double max_distance_m = 2.0;               ///< path length from a firing to the latest one (m)
   double max_turn_rad = 1.5707963267948966;  ///< sum of |heading changes| along it (rad)
