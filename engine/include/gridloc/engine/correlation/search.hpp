@@ -201,7 +201,9 @@ struct RefinedPose {
 /// as the winner (at most `max_steps` each way): with integer scores (hits) a scan often ties
 /// over several headings, and the search's lowest-index winner sits at the run's start, where
 /// refinement's parabola cannot reach the middle. The score is unchanged; the winner's own
-/// pose when nothing ties. `lattice_grid` as for refine().
+/// pose when nothing ties; the run does not wrap around a full turn of headings. Estimate::pose
+/// (refined from it) may then lie a few heading steps from Estimate::lattice_pose, which
+/// stays the search's winner. `lattice_grid` as for refine().
 LatticePose centre_of_heading_ties(
     const LatticePose& best, const Lattice& lattice, const SearchLevel& finest, int max_steps = 8,
     const std::function<const PlacedLocalGrid*(int it)>& lattice_grid = {});
