@@ -128,11 +128,7 @@ EvalOptions eval_options(const EvalArgs& args) {
   options.seed = args.seed;
   args.search.apply(options.search);
   options.search.resolution = options.window.step_xy = args.step_xy;
-  if (args.noise == "none") {
-    options.noise = SonarSimOptions{};
-  } else if (args.noise != "realistic") {
-    throw Error("--noise must be realistic or none, not '" + args.noise + "'");
-  }
+  options.noise = parse_noise(args.noise);
   options.noisy.enabled = args.noisy;
   options.laser = args.laser;
   if (!args.estimators.empty()) {

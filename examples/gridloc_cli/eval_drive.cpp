@@ -58,11 +58,7 @@ DriveEvalOptions drive_options(const EvalArgs& args, const DriveArgs& drive) {
   parse_odometry_noise(drive.odometry_noise, options);
   args.search.apply(options.search);
   options.search.resolution = options.window.step_xy = args.step_xy;
-  if (args.noise == "none") {
-    options.noise = SonarSimOptions{};
-  } else if (args.noise != "realistic") {
-    throw Error("--noise must be realistic or none, not '" + args.noise + "'");
-  }
+  options.noise = parse_noise(args.noise);
   return options;
 }
 

@@ -38,6 +38,12 @@ LocalModel parse_local(const std::string& text) {
   throw Error("--local must be oriented or turned, not '" + text + "'");
 }
 
+SonarSimOptions parse_noise(const std::string& text) {
+  if (text == "realistic") return SonarSimOptions::realistic(1);
+  if (text == "none") return SonarSimOptions{};
+  throw Error("--noise must be realistic or none, not '" + text + "'");
+}
+
 GlobalModel parse_global(const std::string& text) {
   if (text == "thinned") return GlobalModel::Thinned;
   if (text == "raw") return GlobalModel::Raw;

@@ -5,6 +5,7 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/octomap_io.hpp"
+#include "gridloc/sensors/sonar_sim.hpp"
 
 namespace gridloc::cli {
 
@@ -13,6 +14,8 @@ Pose2 parse_pose(const std::string& text, const std::string& what);
 
 LocalModel parse_local(const std::string& text);
 GlobalModel parse_global(const std::string& text);
+/// The evaluations' --noise: "realistic" (SonarSimOptions::realistic) or "none".
+SonarSimOptions parse_noise(const std::string& text);
 SearchStrategy parse_strategy(const std::string& text);
 ArcRule parse_arc_rule(const std::string& text);
 ScanModel parse_scan_model(const std::string& text);
