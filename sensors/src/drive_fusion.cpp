@@ -47,8 +47,10 @@ struct KeptSpan {
   double turn_rad = 0.0;
 };
 
-/// Walks back from the latest firing while the path stays within the window's bounds.
-KeptSpan kept_span(const std::vector<OdometryFiring>& drive, const DriveWindowOptions& window) {
+/// Walks back from the latest reading (a firing or a scan) while the path stays within the
+/// window's bounds.
+template <class Reading>
+KeptSpan kept_span(const std::vector<Reading>& drive, const DriveWindowOptions& window) {
   KeptSpan span{drive.size() - 1, 0.0, 0.0};
   while (span.first > 0 && drive.size() - span.first < window.max_firings) {
     const Pose2& older = drive[span.first - 1].odometry;
@@ -105,6 +107,46 @@ FusedFirings fuse_firings(const SonarRing& ring, const std::vector<OdometryFirin
     }
   }
   fused.firings = drive.size() - span.first;
+  fused.distance_m = span.distance_m;
+  fused.turn_rad = span.turn_rad;
+  return fused;
+}
+
+namespace {
+
+/// Throws unless every scan has finite odometry and passes validate().
+void check_scans(const std::vector<OdometryScan>& drive) {
+  if (drive.empty()) throw Error("drive: no scan to fuse (the latest scan is needed)");
+  for (std::size_t k = 0; k < drive.size(); ++k) {
+    const Pose2& pose = drive[k].odometry;
+    const std::string where = "drive: scan " + std::to_string(k) + ": ";
+    if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.theta)) {
+      throw Error(where + "odometry pose is not finite");
+    }
+    try {
+      validate(drive[k].scan);
+    } catch (const Error& e) {
+      throw Error(where + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+FusedScans fuse_scans(const std::vector<OdometryScan>& drive, const Pose2& mount,
+                      const ScanModelOptions& model, const DriveWindowOptions& window) {
+  validate(window);
+  check_scans(drive);
+  const KeptSpan span = kept_span(drive, window);
+  const Pose2& latest = drive.back().odometry;
+  std::vector<ScanPoints> parts;
+  for (std::size_t k = span.first; k < drive.size(); ++k) {
+    const Pose2 sensor = compose(relative_pose(latest, drive[k].odometry), mount);
+    parts.push_back(scan_points(drive[k].scan, model, sensor));
+  }
+  FusedScans fused;
+  fused.points = merge_points(parts);
+  fused.scans = drive.size() - span.first;
   fused.distance_m = span.distance_m;
   fused.turn_rad = span.turn_rad;
   return fused;

@@ -118,7 +118,7 @@ void validate(const ScanModelOptions& options) {
   }
 }
 
-ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options) {
+ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options, const Pose2& mount) {
   validate(options);
   if (options.model == ScanModel::Rays) {
     throw Error("scan model: the ray model marks every crossed cell; it has no rigid points");
@@ -130,12 +130,17 @@ ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options) {
   p.y.reserve(p.x.capacity());
   p.norm.reserve(p.x.capacity());
   p.weight.reserve(p.x.capacity());
+  // A sensor at the centre keeps norm = r exactly (hypot may differ in the last bit).
+  const bool centred = mount.x == 0.0 && mount.y == 0.0;
   auto add = [&](double r, double a, float w) {
-    p.x.push_back(r * std::cos(a));
-    p.y.push_back(r * std::sin(a));
-    p.norm.push_back(r);
+    const double x = mount.x + r * std::cos(a + mount.theta);
+    const double y = mount.y + r * std::sin(a + mount.theta);
+    const double norm = centred ? r : std::hypot(x, y);
+    p.x.push_back(x);
+    p.y.push_back(y);
+    p.norm.push_back(norm);
     p.weight.push_back(w);
-    p.max_norm = std::max(p.max_norm, r);
+    p.max_norm = std::max(p.max_norm, norm);
   };
   for (std::size_t k = 0; k < n; ++k) {
     if (scan.ranges[k] < scan.max_range) add(scan.ranges[k], scan.angles[k], 1.0f);
@@ -150,6 +155,29 @@ ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options) {
     }
   }
   return p;
+}
+
+namespace {
+
+/// Appends points [first, last) of `from` to `to`.
+void append_points(ScanPoints& to, const ScanPoints& from, std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k < last; ++k) {
+    to.x.push_back(from.x[k]);
+    to.y.push_back(from.y[k]);
+    to.norm.push_back(from.norm[k]);
+    to.weight.push_back(from.weight[k]);
+  }
+  to.max_norm = std::max(to.max_norm, from.max_norm);
+}
+
+}  // namespace
+
+ScanPoints merge_points(const std::vector<ScanPoints>& parts) {
+  ScanPoints merged;
+  for (const ScanPoints& part : parts) append_points(merged, part, 0, part.hit_count);
+  merged.hit_count = merged.size();
+  for (const ScanPoints& part : parts) append_points(merged, part, part.hit_count, part.size());
+  return merged;
 }
 
 SparseLocalGrid rasterize_points(const ScanPoints& points, double theta, double resolution,

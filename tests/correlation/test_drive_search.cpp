@@ -11,6 +11,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/drive_fusion.hpp"
 #include "gridloc/sensors/rng.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "test_support.hpp"
 
@@ -185,6 +186,60 @@ TEST(DriveSearch, ACorridorAmbiguousFromOneFiringIsResolvedByADrive) {
   // relative: more firings add the same evidence to both and dilute the recess's few cells.
   // The refined pose (5.388, 0.952) also slides 11 cm along the corridor from the lattice
   // winner (5.45, 0.95). Hypotheses re-scored through motion (issue 13) are to decide it.
+}
+
+TEST(DriveSearch, BranchAndBoundEqualsExhaustiveOnFusedScans) {
+  const OccupancyMap map = load_ros_map(test::map_path("apartment_small"));
+  Rng rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Pose2 truth = sample_free_pose(map, ring(), 0.25, rng);
+    std::vector<OdometryScan> drive;
+    for (int k = 2; k >= 0; --k) {
+      const Pose2 pose = compose(truth, {-0.3 * k, 0.0, -0.1 * k});
+      drive.push_back({pose, simulate_scan(map, pose, 90, 6.0, 0.02, rng.next())});
+    }
+    Observation observation;
+    observation.points = fuse_scans(drive, {0.1, 0.0, 0.0}, {}).points;
+    CorrelationOptions options;
+    options.resolution = map.geometry.resolution;
+    options.reach_m = 8.0;
+    options.strategy = SearchStrategy::BranchAndBound;
+    const CorrelationEstimator bnb(map, options);
+    options.strategy = SearchStrategy::Exhaustive;
+    const CorrelationEstimator exhaustive(map, options);
+    SearchWindow window = window_at(compose(truth, {0.2, -0.1, 0.1}));
+    window.half_xy = 0.3;
+    window.half_theta = 0.3;
+    window.step_xy = options.resolution;
+    window.step_theta = deg2rad(2.0);
+    const Estimate fast = bnb.estimate(observation, window);
+    const Estimate reference = exhaustive.estimate(observation, window);
+    EXPECT_EQ(fast.score, reference.score) << "trial " << trial;
+    EXPECT_EQ(fast.lattice_pose.x, reference.lattice_pose.x);
+    EXPECT_EQ(fast.lattice_pose.y, reference.lattice_pose.y);
+    EXPECT_EQ(fast.lattice_pose.theta, reference.lattice_pose.theta);
+    EXPECT_TRUE(fast.stats.proven_optimal);
+  }
+}
+
+TEST(DriveSearch, ScanPointsMustBeAloneFiniteAndWithinReach) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
+  CorrelationOptions options;
+  options.reach_m = 4.0;
+  const CorrelationEstimator estimator(map, options);
+  const SearchWindow window = window_at({2.0, 1.5, 0.0});
+  std::vector<OdometryScan> drive = {
+      {{0.0, 0.0, 0.0}, simulate_scan(map, {2.0, 1.5, 0.0}, 90, 3.0, 0.0, 1)}};
+  Observation observation;
+  observation.points = fuse_scans(drive, {}, {}).points;
+  EXPECT_NO_THROW(estimator.estimate(observation, window));
+  observation.points->x[3] = std::nan("");
+  test::expect_error([&] { estimator.estimate(observation, window); }, {"point 3", "finite"});
+  observation.points = fuse_scans(drive, {3.0, 0.0, 0.0}, {}).points;  // beyond the reach
+  test::expect_error([&] { estimator.estimate(observation, window); }, {"reach"});
+  observation.points = fuse_scans(drive, {}, {}).points;
+  observation.ranges = {1.0};
+  test::expect_error([&] { estimator.estimate(observation, window); }, {"scan points alone"});
 }
 
 }  // namespace

@@ -129,6 +129,10 @@ TEST(Localizer, BadInputIsRefusedAndLeavesTheStateAsItWas) {
       },
       {"covariance"});
   test::expect_error([&] { localizer.add_observation(std::nan(""), firing); }, {"time"});
+  RangeScan scan;
+  scan.angles = {0.0};
+  scan.ranges = {1.0};
+  test::expect_error([&] { localizer.add_observation(2.0, scan); }, {"built for a sonar ring"});
   const Estimate after = localizer.estimate();
   EXPECT_EQ(after.pose.x, before.pose.x);
   EXPECT_EQ(after.pose.y, before.pose.y);

@@ -133,5 +133,75 @@ TEST(DriveFusion, BadDrivesNameTheFiring) {
   test::expect_error([&] { fuse_firings(ring(), {drive[1]}, window); }, {"max_firings"});
 }
 
+/// A two-beam scan: one return straight ahead at `ahead` m, one no-return to the left.
+RangeScan two_beams(double ahead) {
+  RangeScan scan;
+  scan.angles = {0.0, 0.5 * std::numbers::pi};
+  scan.ranges = {ahead, 5.0};
+  scan.max_range = 5.0;
+  return scan;
+}
+
+TEST(DriveFusion, ScansArePlacedWhereTheirSensorWasRelativeToTheLatestPose) {
+  // The robot drove 1 m forward and turned left 90 degrees; the laser sits 0.2 m ahead.
+  const std::vector<OdometryScan> drive = {{{0.0, 0.0, 0.0}, two_beams(3.0)},
+                                           {{1.0, 0.0, 0.5 * std::numbers::pi}, two_beams(2.0)}};
+  const Pose2 mount{0.2, 0.0, 0.0};
+  ScanModelOptions hits;
+  const FusedScans fused = fuse_scans(drive, mount, hits);
+  ASSERT_EQ(fused.scans, 2u);
+  EXPECT_NEAR(fused.distance_m, 1.0, 1e-12);
+  EXPECT_NEAR(fused.turn_rad, 0.5 * std::numbers::pi, 1e-12);
+  ASSERT_EQ(fused.points.hit_count, 2u);  // the no-returns give no hit
+  // The first return lies at world (3.2, 0): in the latest frame, 2.2 m to the robot's right.
+  EXPECT_NEAR(fused.points.x[0], 0.0, 1e-12);
+  EXPECT_NEAR(fused.points.y[0], -2.2, 1e-12);
+  EXPECT_NEAR(fused.points.norm[0], 2.2, 1e-12);
+  EXPECT_NEAR(fused.points.x[1], 2.2, 1e-12);  // the latest: mount + 2 m ahead
+  EXPECT_NEAR(fused.points.y[1], 0.0, 1e-12);
+  EXPECT_NEAR(fused.points.max_norm, 2.2, 1e-12);
+}
+
+TEST(DriveFusion, FusedScanPointsKeepEveryHitBeforeEveryFreeSample) {
+  const std::vector<OdometryScan> drive = {{{0.0, 0.0, 0.0}, two_beams(3.0)},
+                                           {{0.5, 0.0, 0.0}, two_beams(2.0)}};
+  ScanModelOptions samples;
+  samples.model = ScanModel::Samples;
+  samples.free_samples = 2;
+  const FusedScans fused = fuse_scans(drive, {}, samples);
+  ASSERT_EQ(fused.points.hit_count, 2u);
+  ASSERT_EQ(fused.points.size(), 2u + 2u * 2u * 2u);  // 2 beams x 2 samples per scan
+  for (std::size_t k = 0; k < fused.points.size(); ++k) {
+    EXPECT_EQ(fused.points.weight[k] > 0.0f, k < fused.points.hit_count) << "point " << k;
+  }
+  EXPECT_NEAR(fused.points.x[0], 2.5, 1e-12);  // the older return, 0.5 m behind now
+  EXPECT_NEAR(fused.points.x[1], 2.0, 1e-12);
+}
+
+TEST(DriveFusion, TheScanWindowKeepsTheLatestScansWithinItsBounds) {
+  std::vector<OdometryScan> drive;
+  for (int k = 0; k < 6; ++k) drive.push_back({{0.5 * k, 0.0, 0.0}, two_beams(3.0)});
+  DriveWindowOptions window;
+  window.max_distance_m = 1.2;
+  EXPECT_EQ(fuse_scans(drive, {}, {}, window).scans, 3u);  // 0 m, 0.5 m and 1 m back
+  window = {};
+  window.max_firings = 2;
+  EXPECT_EQ(fuse_scans(drive, {}, {}, window).scans, 2u);
+}
+
+TEST(DriveFusion, BadScanDrivesNameTheScan) {
+  test::expect_error([] { fuse_scans({}, {}, {}); }, {"drive", "no scan"});
+  std::vector<OdometryScan> drive = {{{0.0, 0.0, 0.0}, two_beams(3.0)},
+                                     {{0.2, 0.0, 0.0}, two_beams(-1.0)}};
+  test::expect_error([&] { fuse_scans(drive, {}, {}); }, {"scan 1", "negative"});
+  drive[1].scan = two_beams(1.0);
+  drive[0].odometry.theta = std::nan("");
+  test::expect_error([&] { fuse_scans(drive, {}, {}); }, {"scan 0", "odometry"});
+  drive[0].odometry.theta = 0.0;
+  ScanModelOptions rays;
+  rays.model = ScanModel::Rays;
+  test::expect_error([&] { fuse_scans(drive, {}, rays); }, {"ray model"});
+}
+
 }  // namespace
 }  // namespace gridloc

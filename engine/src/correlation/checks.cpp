@@ -67,10 +67,40 @@ double padding_reach(const CorrelationOptions& options, const SonarRing& ring) {
   return reach;
 }
 
+/// Checks rigid scan points: alone in the observation, finite, some beam ends, within `reach`.
+void check_points(const Observation& observation, double reach) {
+  if (!observation.ranges.empty() || observation.scan || observation.ring ||
+      !observation.rejected.empty()) {
+    throw Error("observation: give scan points alone (no ranges, scan, ring or rejection mask)");
+  }
+  const ScanPoints& points = *observation.points;
+  if (points.x.size() != points.size() || points.y.size() != points.size() ||
+      points.norm.size() != points.size()) {
+    throw Error("observation: scan points: x, y, norm and weight differ in length");
+  }
+  if (points.hit_count == 0 || points.hit_count > points.size()) {
+    throw Error("observation: scan points have no beam end (nothing to match)");
+  }
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!std::isfinite(points.x[k]) || !std::isfinite(points.y[k]) ||
+        !std::isfinite(points.weight[k])) {
+      throw Error("observation: scan point " + std::to_string(k) + " is not finite");
+    }
+  }
+  if (!(points.max_norm <= reach + 1e-9)) {
+    std::ostringstream m;
+    m << "observation: scan points reach " << points.max_norm << " m, beyond the estimator's reach "
+      << reach << " m (set CorrelationOptions::reach_m)";
+    throw Error(m.str());
+  }
+}
+
 /// Checks that the observation is sonar readings for `ring` or a scan within `reach`, not
 /// both; throws gridloc::Error naming what is wrong.
 void check_observation(const Observation& observation, const SonarRing& ring, double reach) {
-  if (observation.scan) {
+  if (observation.points) {
+    check_points(observation, reach);
+  } else if (observation.scan) {
     if (!observation.ranges.empty()) {
       throw Error("observation: give sonar ranges or a scan, not both");
     }
@@ -178,6 +208,24 @@ Lattice CorrelationEstimator::lattice(const Observation& observation,
   return lattice;
 }
 
+namespace {
+
+/// The farthest beam end of a scan or of rigid scan points (m).
+double farthest_return(const Observation& observation) {
+  double far = 0.0;
+  if (observation.points) {
+    const ScanPoints& points = *observation.points;
+    for (std::size_t k = 0; k < points.hit_count; ++k) far = std::max(far, points.norm[k]);
+  } else {
+    for (double r : observation.scan->ranges) {
+      if (r < observation.scan->max_range) far = std::max(far, r);
+    }
+  }
+  return far;
+}
+
+}  // namespace
+
 SearchWindow CorrelationEstimator::global_window(const Observation& observation) const {
   const PaddedGrid& finest = levels_.front();
   const double res = options_.resolution;
@@ -189,11 +237,8 @@ SearchWindow CorrelationEstimator::global_window(const Observation& observation)
   w.half_xy = 0.5 * std::max(finest.width, finest.height) * res + res;
   w.half_theta = std::numbers::pi;  // headings -pi and +pi coincide: one heading scored twice
   w.step_theta = deg2rad(5.0);
-  if (observation.scan) {
-    double far = 0.0;
-    for (double r : observation.scan->ranges) {
-      if (r < observation.scan->max_range) far = std::max(far, r);
-    }
+  if (observation.scan || observation.points) {
+    const double far = farthest_return(observation);
     if (far > res) {
       const double step = std::acos(1.0 - res * res / (2.0 * far * far));
       w.step_theta = std::clamp(step, deg2rad(0.1), deg2rad(5.0));

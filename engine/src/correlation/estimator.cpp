@@ -21,10 +21,11 @@ double level_resolution(double finest, int l) {
   return finest * static_cast<double>(1 << l);
 }
 
-/// A scan's points under a point model, made once and rotated per heading; nullopt for
-/// sonar readings and for ray-model scans.
+/// A scan's points under a point model (or the observation's own points), made once and
+/// rotated per heading; nullopt for sonar readings and for ray-model scans.
 std::optional<ScanPoints> rigid_points(const Observation& observation,
                                        const ScanModelOptions& scan) {
+  if (observation.points) return observation.points;
   if (observation.scan && scan.model != ScanModel::Rays) {
     return scan_points(*observation.scan, scan);
   }
@@ -251,9 +252,10 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   Estimate e;
   place_winner(e, search, map_.geometry, options_);
   e.score = best.score;
-  e.agreement = observation.scan ? std::numeric_limits<double>::quiet_NaN()
-                                 : reading_agreement(map_, ring_of(observation), observation.ranges,
-                                                     observation.rejected, e.pose);
+  e.agreement = observation.scan || observation.points
+                    ? std::numeric_limits<double>::quiet_NaN()
+                    : reading_agreement(map_, ring_of(observation), observation.ranges,
+                                        observation.rejected, e.pose);
   e.on_window_edge = on_window_edge(best, lattice, window, map_.geometry, options_.resolution);
   // The winning heading's local grid: the most any pose could score.
   const double mass =

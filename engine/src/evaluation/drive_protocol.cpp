@@ -8,6 +8,7 @@
 
 #include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/odometry_noise.hpp"
 #include "gridloc/sensors/rng.hpp"
 
 namespace gridloc {
@@ -54,31 +55,12 @@ std::vector<Pose2> draw_path(const OccupancyMap& map, const SonarRing& ring,
               std::to_string(options.drive_m) + " m on this map");
 }
 
-/// The odometry of `path`, off as a miscalibrated one is: one length scale and one heading
-/// drift per metre drawn for the trial (sigma: the options' share and rate), applied to every
-/// step, so the error grows with the distance driven whatever the number of firings. The
-/// first pose is the odometry's origin.
-std::vector<Pose2> drifting_odometry(const std::vector<Pose2>& path,
-                                     const DriveEvalOptions& options, Rng& rng) {
-  const double scale = 1.0 + options.odometry_noise_frac * rng.gaussian();
-  const double drift_per_m = options.odometry_noise_rad_per_m * rng.gaussian();
-  std::vector<Pose2> odometry{path.front()};
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    Pose2 step = relative_pose(path[k - 1], path[k]);
-    const double length = std::hypot(step.x, step.y);
-    step.x *= scale;
-    step.y *= scale;
-    step.theta += drift_per_m * length;
-    odometry.push_back(compose(odometry.back(), step));
-  }
-  return odometry;
-}
-
 DriveTrial draw_trial(const OccupancyMap& map, const SonarRing& ring,
                       const DriveEvalOptions& options, Rng& rng) {
   DriveTrial trial;
   trial.path = draw_path(map, ring, options, rng);
-  const std::vector<Pose2> odometry = drifting_odometry(trial.path, options, rng);
+  const std::vector<Pose2> odometry = drifting_odometry(
+      trial.path, {options.odometry_noise_frac, options.odometry_noise_rad_per_m}, rng);
   for (std::size_t k = 0; k < trial.path.size(); ++k) {
     SonarSimOptions noise = options.noise;
     noise.seed = rng.next();

@@ -52,15 +52,34 @@ CorrelationOptions with_drive_reach(const LocalizerOptions& options, const Sonar
   return correlation;
 }
 
+/// The search options for a laser: scans as rigid points, reaching the laser's range from
+/// anywhere along the drive window.
+CorrelationOptions with_laser_reach(const LocalizerOptions& options, const LaserSensor& laser) {
+  validate(laser);
+  CorrelationOptions correlation = options.correlation;
+  correlation.scan = laser.model;
+  correlation.reach_m =
+      std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +
+                                        options.drive.max_distance_m);
+  return correlation;
+}
+
 bool finite(const Pose2& pose) {
   return std::isfinite(pose.x) && std::isfinite(pose.y) && std::isfinite(pose.theta);
 }
 
-/// Drops the firings the window no longer keeps (the latest is always kept).
-void prune_drive(std::vector<OdometryFiring>& drive, const SonarRing& ring,
-                 const DriveWindowOptions& window) {
-  const std::size_t kept = fuse_firings(ring, drive, window).firings;
+/// Keeps the latest `kept` readings of a drive (the ones the window kept when fusing).
+template <class Reading>
+void keep_latest(std::vector<Reading>& drive, std::size_t kept) {
   drive.erase(drive.begin(), drive.end() - static_cast<std::ptrdiff_t>(kept));
+}
+
+/// The scan with returns at or beyond the laser's max range read as no return.
+RangeScan clipped(const RangeScan& scan, const LaserSensor& laser) {
+  RangeScan clipped = scan;
+  clipped.max_range = std::min(scan.max_range, laser.max_range);
+  for (double& r : clipped.ranges) r = std::min(r, clipped.max_range);
+  return clipped;
 }
 
 /// Whether a world pose lies on the map's grid.
@@ -72,12 +91,13 @@ bool on_map(const OccupancyMap& map, const Pose2& pose) {
 
 /// The state after a firing's estimate: a `localized` fix becomes the prior (the path is
 /// counted from it); too many answers in a row that are not drop the prior.
-void take_estimate(LocalizerState& state, const Estimate& e, int misses_before_global) {
+void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_at,
+                   int misses_before_global) {
   state.estimate = e;
   if (e.verdict == Verdict::Localized) {
     state.prior = e.pose;
     state.prior_covariance = e.covariance;
-    state.prior_odometry = state.drive.back().odometry;
+    state.prior_odometry = taken_at;
     state.travelled_m = 0.0;
     state.misses = 0;
   } else if (++state.misses >= misses_before_global) {
@@ -91,6 +111,22 @@ void take_estimate(LocalizerState& state, const Estimate& e, int misses_before_g
 Localizer::Localizer(OccupancyMap map, SonarRing ring, LocalizerOptions options)
     : options_(checked(options)),
       estimator_(std::move(map), ring, with_drive_reach(options_, ring)) {}
+
+Localizer::Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions options)
+    : options_(checked(options)),
+      laser_(laser),
+      estimator_(std::move(map), with_laser_reach(options_, laser)) {}
+
+void validate(const LaserSensor& laser) {
+  if (!finite(laser.mount)) throw Error("laser: the mount pose must be finite");
+  if (!(laser.max_range > 0.0) || !std::isfinite(laser.max_range)) {
+    throw Error("laser: max_range must be finite and > 0, got " + std::to_string(laser.max_range));
+  }
+  validate(laser.model);
+  if (laser.model.model == ScanModel::Rays) {
+    throw Error("laser: the ray model has no rigid points; use hits or samples");
+  }
+}
 
 void Localizer::reset() {
   std::unique_lock lock(mutex_);
@@ -124,6 +160,7 @@ void Localizer::add_odometry(const Pose2& odometry) {
 
 void Localizer::add_observation(double time_s, const std::vector<double>& driver_ranges) {
   if (!std::isfinite(time_s)) throw Error("localizer: observation time must be finite");
+  if (laser_) throw Error("localizer: built for a laser; give scans, not sonar ranges");
   const DriverReadings readings =
       from_driver(estimator_.ring(), driver_ranges, options_.max_range_slack_m);
   LocalizerState next;
@@ -131,14 +168,38 @@ void Localizer::add_observation(double time_s, const std::vector<double>& driver
     std::shared_lock lock(mutex_);
     next = state_;
   }
+  const Pose2 taken_at = next.odometry.value_or(Pose2{});
+  next.drive.push_back({taken_at, readings.ranges, readings.rejected});
+  const FusedFirings fused = fuse_firings(estimator_.ring(), next.drive, options_.drive);
+  keep_latest(next.drive, fused.firings);
+  localize(std::move(next), taken_at,
+           Observation{fused.ranges, std::nullopt, fused.rejected, fused.ring});
+}
+
+void Localizer::add_observation(double time_s, const RangeScan& scan) {
+  if (!std::isfinite(time_s)) throw Error("localizer: observation time must be finite");
+  if (!laser_) throw Error("localizer: built for a sonar ring; give sonar ranges, not a scan");
+  validate(scan);
+  LocalizerState next;
+  {
+    std::shared_lock lock(mutex_);
+    next = state_;
+  }
+  const Pose2 taken_at = next.odometry.value_or(Pose2{});
+  next.scans.push_back({taken_at, clipped(scan, *laser_)});
+  const FusedScans fused = fuse_scans(next.scans, laser_->mount, laser_->model, options_.drive);
+  keep_latest(next.scans, fused.scans);
+  Observation observation;
+  observation.points = fused.points;
+  localize(std::move(next), taken_at, observation);
+}
+
+void Localizer::localize(LocalizerState next, const Pose2& taken_at,
+                         const Observation& observation) {
   const double travelled_before = next.travelled_m;
   // The search runs without the lock, so readers get the previous estimate meanwhile.
-  next.drive.push_back({next.odometry.value_or(Pose2{}), readings.ranges, readings.rejected});
-  prune_drive(next.drive, estimator_.ring(), options_.drive);
-  const FusedFirings fused = fuse_firings(estimator_.ring(), next.drive, options_.drive);
-  const Observation observation{fused.ranges, std::nullopt, fused.rejected, fused.ring};
-  const Estimate e = estimator_.estimate(observation, window_now(next));
-  take_estimate(next, e, options_.misses_before_global);
+  const Estimate e = estimator_.estimate(observation, window_now(next, taken_at, observation));
+  take_estimate(next, e, taken_at, options_.misses_before_global);
   std::unique_lock lock(mutex_);
   // Odometry that arrived during the search is kept, with the path it added.
   next.travelled_m += state_.travelled_m - travelled_before;
@@ -152,23 +213,24 @@ Estimate Localizer::estimate() const {
   return *state_.estimate;
 }
 
-/// The window around the prior carried to the latest odometry pose, grown by the odometry's
-/// error over the path since; the global window without a prior, when that grows past
-/// max_half_xy_m, or when the carried prior has left the map.
-SearchWindow Localizer::window_now(const LocalizerState& state) const {
-  const Observation probe{std::vector<double>(estimator_.ring().sonars.size(), 0.0)};
-  if (!state.prior) return estimator_.global_window(probe);
-  const Pose2 moved = relative_pose(state.prior_odometry, state.drive.back().odometry);
+/// The window around the prior carried to the odometry pose `taken_at`, grown by the
+/// odometry's error over the path since; the global window without a prior, when that grows
+/// past max_half_xy_m, or when the carried prior has left the map. Its heading step is the
+/// global window's (5 deg for sonar; for a scan, about a cell at its farthest return).
+SearchWindow Localizer::window_now(const LocalizerState& state, const Pose2& taken_at,
+                                   const Observation& observation) const {
+  const SearchWindow global = estimator_.global_window(observation);
+  if (!state.prior) return global;
+  const Pose2 moved = relative_pose(state.prior_odometry, taken_at);
   const double sigma_xy =
       std::sqrt(std::max(state.prior_covariance(0, 0), state.prior_covariance(1, 1)));
   const double half_xy =
       options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * state.travelled_m;
   SearchWindow window;
   window.center = compose(*state.prior, moved);
-  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) {
-    return estimator_.global_window(probe);
-  }
+  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) return global;
   window.step_xy = estimator_.options().resolution;
+  window.step_theta = global.step_theta;
   window.half_xy = std::max(half_xy, options_.min_half_xy_m);
   const double half_theta = options_.prior_sigmas * std::sqrt(state.prior_covariance(2, 2)) +
                             options_.odometry_turn_error_per_m * state.travelled_m;

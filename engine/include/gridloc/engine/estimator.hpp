@@ -13,9 +13,9 @@ namespace gridloc {
 
 /// One observation from the robot standing still: either a range per sonar of the ring (m),
 /// in ring order, a sonar's max_range meaning no echo; or, when `scan` is set, a laser or IR
-/// scan (then `ranges` must be empty). `rejected` (empty = none) marks sonars an echo filter
-/// rejected (filter_echoes): they contribute nothing, unlike a sonar without echo, whose cone
-/// says "free"; every reading rejected is an error.
+/// scan (then `ranges` must be empty); or `points`. `rejected` (empty = none) marks sonars an echo
+/// filter rejected (filter_echoes): they contribute nothing, unlike a sonar without echo, whose
+/// cone says "free"; every reading rejected is an error.
 struct Observation {
   std::vector<double> ranges;
   std::optional<RangeScan> scan = std::nullopt;
@@ -24,6 +24,10 @@ struct Observation {
   /// fuse_firings (each firing's sonars re-mounted in the latest pose's frame). Its reach must
   /// lie within the estimator's (CorrelationOptions::reach_m). Unset: the estimator's ring.
   std::optional<SonarRing> ring = std::nullopt;
+  /// A scan given as rigid points in the robot frame instead of `scan` (then `ranges` and
+  /// `scan` must be empty): a laser mounted off the robot's centre or a drive of scans fused
+  /// by fuse_scans. Correlation only; its points reach at most the estimator's reach.
+  std::optional<ScanPoints> points = std::nullopt;
 };
 
 /// The estimators a caller can choose by name (the command line's --estimator and

@@ -3,11 +3,13 @@
 /// poses, fused into one observation in the frame of the latest pose. Each past firing's
 /// sonars are re-mounted at where they were relative to the robot now, so the oriented cone
 /// model of every reading is drawn at its own pose and then discretized per candidate
-/// heading exactly as for one firing (seed 001 eq. 3; never a built grid turned).
+/// heading exactly as for one firing (seed 001 eq. 3; never a built grid turned). Laser scans
+/// are fused the same way: each scan's points drawn from where its sensor was.
 #include <cstddef>
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/sonar_ring.hpp"
 
 namespace gridloc {
@@ -59,5 +61,29 @@ SonarSpec remount(const SonarSpec& spec, const Pose2& relative);
 /// validate_readings() refuses, and naming the field for bad window options.
 FusedFirings fuse_firings(const SonarRing& ring, const std::vector<OdometryFiring>& drive,
                           const DriveWindowOptions& window = {});
+
+/// One laser scan during a drive: the robot's odometry pose it was taken at and the scan in
+/// the sensor's frame.
+struct OdometryScan {
+  Pose2 odometry;
+  RangeScan scan;
+};
+
+/// A drive of scans as one rigid point set in the latest pose's frame (ScanPoints: every
+/// scan's beam ends, then every scan's free samples).
+struct FusedScans {
+  ScanPoints points;
+  std::size_t scans = 0;    ///< how many scans were kept
+  double distance_m = 0.0;  ///< path length from the oldest kept scan to the latest
+  double turn_rad = 0.0;    ///< sum of |heading changes| over that path
+};
+
+/// Fuses `drive` (scans in time order, the latest last) under `window`: each kept scan's
+/// points are drawn by `model` from where its sensor was, `mount` (the sensor's pose on the
+/// robot) composed with the robot's odometry pose relative to the latest. Throws
+/// gridloc::Error naming the scan for an empty drive, non-finite odometry or a scan that
+/// fails validate(), and naming the field for bad options (the ray model has no points).
+FusedScans fuse_scans(const std::vector<OdometryScan>& drive, const Pose2& mount,
+                      const ScanModelOptions& model, const DriveWindowOptions& window = {});
 
 }  // namespace gridloc

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/grids/geometry.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 
 namespace gridloc {
@@ -71,8 +72,15 @@ struct ScanPoints {
 };
 
 /// The points of `scan` under `options` (model Samples or Hits; throws gridloc::Error for
-/// Rays). The scan must have passed validate().
-ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options);
+/// Rays), for a sensor at `mount` (its pose in the robot frame; an off-centre laser, or a
+/// past scan of a drive placed in the latest pose's frame). The scan must have passed
+/// validate().
+ScanPoints scan_points(const RangeScan& scan, const ScanModelOptions& options,
+                       const Pose2& mount = {});
+
+/// The points of several scans as one rigid set (a drive fused in one frame): every part's
+/// beam ends first, then every part's free samples, so hit_count still splits them.
+ScanPoints merge_points(const std::vector<ScanPoints>& parts);
 
 /// floor(v) for |v| < 2^31, exactly, without a libm call (x86-64's baseline has no SSE4.1
 /// rounding instruction).

@@ -1,9 +1,9 @@
 #pragma once
 /// The Localizer: the facade a navigation stack links (issue 13). Built once from a map and
-/// the sonar ring, it is fed odometry and sonar firings as the robot drives and keeps the
-/// current Estimate: each firing is fused with the drive behind it (fuse_firings) and matched
-/// by the exact correlation search, globally until a fix, then in a window around the fix
-/// carried along by odometry.
+/// the sonar ring or a laser, it is fed odometry and sonar firings or scans as the robot
+/// drives and keeps the current Estimate: each observation is fused with the drive behind it
+/// (fuse_firings, fuse_scans) and matched by the exact correlation search, globally until a
+/// fix, then in a window around the fix carried along by odometry.
 #include <Eigen/Core>
 #include <mutex>
 #include <optional>
@@ -36,10 +36,23 @@ struct LocalizerOptions {
   double max_range_slack_m = 0.01;
 };
 
+/// A laser scanner on the robot (issue 13: scans carry their mount, so the caller need not
+/// re-project an off-centre laser).
+struct LaserSensor {
+  Pose2 mount;              ///< the laser's pose in the robot frame
+  double max_range = 30.0;  ///< returns at or beyond this (m) are no return
+  /// How a scan becomes rigid points (hits, or hits and free samples; not rays).
+  ScanModelOptions model;
+};
+
+/// Checks a laser description; throws gridloc::Error naming the field.
+void validate(const LaserSensor& laser);
+
 /// What the Localizer holds between calls (see Localizer).
 struct LocalizerState {
   std::optional<Pose2> odometry;      ///< the latest odometry pose
-  std::vector<OdometryFiring> drive;  ///< firings within the drive window, oldest first
+  std::vector<OdometryFiring> drive;  ///< sonar: firings within the drive window, oldest first
+  std::vector<OdometryScan> scans;    ///< laser: scans within the drive window, oldest first
   std::optional<Pose2> prior;         ///< the pose believed at `prior_odometry`, world frame
   Eigen::Matrix3d prior_covariance = Eigen::Matrix3d::Zero();
   Pose2 prior_odometry;              ///< the odometry pose the prior was given at
@@ -57,6 +70,8 @@ class Localizer {
  public:
   /// Precomputes the global grids once; throws gridloc::Error for a bad map, ring or options.
   Localizer(OccupancyMap map, SonarRing ring, LocalizerOptions options = {});
+  /// The same for a robot with a laser scanner (its scans go to add_observation(time, scan)).
+  Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions options = {});
 
   /// Forgets the drive, the prior and the estimate (not the latest odometry pose): the next
   /// firing localizes globally.
@@ -76,6 +91,12 @@ class Localizer {
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
+  /// A laser scan (sensor frame) at the latest odometry pose, for a Localizer built with a
+  /// LaserSensor: fused with the drive's earlier scans (fuse_scans) and localized as a
+  /// firing is. Ranges at or beyond LaserSensor::max_range (or the scan's own max_range)
+  /// are no return. Throws gridloc::Error for a scan that fails validate(), or on a sonar
+  /// Localizer (and a firing on a laser one).
+  void add_observation(double time_s, const RangeScan& scan);
   /// The latest firing's estimate (pose, covariance, verdict, hypotheses); gridloc::Error
   /// before the first firing.
   Estimate estimate() const;
@@ -83,9 +104,14 @@ class Localizer {
   const CorrelationEstimator& estimator() const { return estimator_; }
 
  private:
-  SearchWindow window_now(const LocalizerState& state) const;
+  /// Localizes `observation`, taken at odometry pose `taken_at`, into `next` (a copy of the
+  /// state) and publishes it.
+  void localize(LocalizerState next, const Pose2& taken_at, const Observation& observation);
+  SearchWindow window_now(const LocalizerState& state, const Pose2& taken_at,
+                          const Observation& observation) const;
 
   LocalizerOptions options_;
+  std::optional<LaserSensor> laser_;  ///< set for a laser Localizer
   CorrelationEstimator estimator_;
   mutable std::shared_mutex mutex_;
   LocalizerState state_;
