@@ -1,6 +1,8 @@
 // gridloc relations: scan matching on a real log, scored against the SLAM benchmark's
 // ground-truth relations (issue 5).
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -8,25 +10,68 @@
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/relations.hpp"
 #include "gridloc/grids/error.hpp"
+#include "options.hpp"
 
 namespace gridloc::cli {
 namespace {
 
 struct RelationsArgs {
-  std::string log, relations, estimator = "icp";
+  std::string log, relations, estimator = "icp", trials_out;
   double time_offset = 0.0;
   double tolerance = 0.002;
   RelationEvalOptions options;
+  SearchArgs search = [] {
+    SearchArgs s;
+    s.strategy = "exhaustive";  // RelationEvalOptions' default (exhaustive_search())
+    return s;
+  }();
   bool json = false;
 };
+
+constexpr const char* kTrialsHeader =
+    "pair,t1,t2,motion_m,motion_deg,returns,translation_error_m,rotation_error_deg,ms,converged,"
+    "failed,verdict,confidence,refined,search_cells";
+
+/// One trial as a CSV row of kTrialsHeader (verdict and confidence empty for icp).
+std::string trial_row(const RelationTrial& t) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%zu,%.6f,%.6f,%.4f,%.3f,%d,%.6f,%.4f,%.3f,%d,%d,", t.pair, t.t1,
+                t.t2, t.motion_m, t.motion_deg, t.returns, t.translation_error_m,
+                t.rotation_error_deg, t.ms, t.converged ? 1 : 0, t.failed ? 1 : 0);
+  std::string row = buf;
+  if (t.verdict) row += to_string(*t.verdict);
+  row += ',';
+  if (!std::isnan(t.confidence)) {
+    std::snprintf(buf, sizeof buf, "%.4f", t.confidence);
+    row += buf;
+  }
+  std::snprintf(buf, sizeof buf, ",%d,%zu", t.refined ? 1 : 0, t.search_cells);
+  return row + buf;
+}
+
+/// The trials as CSV into `out`, opened on `path` before the run (so a bad path fails first).
+void write_trials(std::ofstream& out, const std::string& path, const RelationEvalReport& report) {
+  out << kTrialsHeader << '\n';
+  for (const RelationTrial& t : report.trials) out << trial_row(t) << '\n';
+  out.flush();
+  if (!out) throw Error("--trials-out: writing " + path + " failed");
+}
 
 void run(const RelationsArgs& args) {
   RelationEvalOptions options = args.options;
   options.matcher = parse_estimator_kind(args.estimator);
+  args.search.apply(options.correlation);
+  validate(options);
+  std::ofstream trials;
+  if (!args.trials_out.empty()) {
+    trials.open(args.trials_out);
+    if (!trials) throw Error("--trials-out: cannot write " + args.trials_out);
+  }
   const CarmenLog log = load_carmen_log(args.log);
   const auto relations = load_slam_relations(args.relations);
   const auto pairs = pair_relations(relations, log, args.time_offset, args.tolerance);
   const RelationEvalReport report = evaluate_relations(log, pairs, options);
+  if (trials.is_open()) write_trials(trials, args.trials_out, report);
   const nlohmann::json out = {
       {"estimator", args.estimator},
       {"relations", relations.size()},
@@ -103,6 +148,27 @@ void add_relations(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--icp-max-iterations", icp.max_iterations, "ICP iteration limit")
       ->capture_default_str();
+  cmd->add_option("--map-resolution", args->options.map_resolution,
+                  "correlation: cell of the reference scan's map = translation step (m)")
+      ->capture_default_str();
+  cmd->add_option("--window-margin-xy", args->options.window_margin_xy,
+                  "correlation: the window covers the prior's noise plus this (m)")
+      ->capture_default_str();
+  cmd->add_option("--window-margin-theta", args->options.window_margin_theta,
+                  "correlation: ... plus this (rad)")
+      ->capture_default_str();
+  cmd->add_option("--refine-max-shift", args->options.refine_max_shift_m,
+                  "correlation+icp: ICP's pose is kept within this of the search's (m)")
+      ->capture_default_str();
+  cmd->add_option("--refine-max-turn", args->options.refine_max_turn_rad,
+                  "correlation+icp: ... and within this turn (rad)")
+      ->capture_default_str();
+  args->search.add_to(cmd);
+  cmd->add_option("--max-search-mb", args->options.max_search_mb,
+                  "refuse a pair whose correlation search grids would take more (MB)")
+      ->capture_default_str();
+  cmd->add_option("--trials-out", args->trials_out,
+                  "write each pair's error, time and verdict to this CSV file");
   cmd->add_flag("--json", args->json, "print JSON");
   cmd->callback([args] { run(*args); });
 }

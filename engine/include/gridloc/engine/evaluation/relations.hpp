@@ -4,6 +4,8 @@
 /// from the two scans, starting from the logged motion perturbed by seeded noise, and measure
 /// the error of the estimate against the relation.
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,10 @@
 #include "gridloc/sensors/slam_relations.hpp"
 
 namespace gridloc {
+
+/// The correlation options of the relations protocol: CorrelationOptions with the exhaustive
+/// strategy.
+CorrelationOptions exhaustive_search();
 
 struct RelationEvalOptions {
   /// How a relation's two scans are matched: Icp (match_scans from the prior), Correlation
@@ -36,16 +42,58 @@ struct RelationEvalOptions {
   double map_resolution = 0.05;
   double window_margin_xy = 0.1;
   double window_margin_theta = 0.0349065850399;  ///< 2 deg
-  CorrelationOptions correlation;
+  /// The search's options (resolution and reach_m are set per pair). Exhaustive by default:
+  /// the same winner as branch and bound on these small windows, without the bound pyramid
+  /// that branch and bound builds for a window over the whole padded map (about 10 times the
+  /// memory; 1 GB on freiburg-079's 36 m returns).
+  CorrelationOptions correlation = exhaustive_search();
+  /// A pair whose search grids (the reference scan's padded map and, for branch and bound,
+  /// its bound pyramid) would take more than this (MB) is refused with gridloc::Error.
+  double max_search_mb = 400.0;
   /// Correlation + ICP: ICP's pose is kept when it converged within these of the search's.
   double refine_max_shift_m = 0.3;
   double refine_max_turn_rad = 0.0872664625997;  ///< 5 deg
 };
 
+/// Checks the options; throws gridloc::Error naming the field and its value (negative or
+/// non-finite noise, margins or limits, a non-positive resolution, failure threshold or
+/// max_search_mb).
+void validate(const RelationEvalOptions& options);
+
 /// Mean and standard deviation.
 struct ErrorStats {
   double mean = 0.0;
   double std = 0.0;
+};
+
+/// One pair's match, as match_relation_pair() gives it.
+struct PairMatch {
+  Pose2 pose;             ///< the motion of the current scan in the reference's frame
+  bool converged = true;  ///< see match_pair()
+  /// The correlation matchers: the search's verdict and confidence (nullopt / NaN for Icp).
+  std::optional<Verdict> verdict;
+  double confidence = std::numeric_limits<double>::quiet_NaN();
+  /// Correlation + ICP: ICP's pose was kept (false: the search's).
+  bool refined = false;
+  std::size_t search_cells = 0;  ///< the padded search grid's cells (0 for Icp)
+};
+
+/// One relation pair of evaluate_relations().
+struct RelationTrial {
+  std::size_t pair = 0;       ///< index into the pairs evaluated
+  double t1 = 0.0, t2 = 0.0;  ///< the relation's times (s)
+  double motion_m = 0.0;      ///< the relation's translation (m) ...
+  double motion_deg = 0.0;    ///< ... and |rotation| (deg)
+  int returns = 0;            ///< returns of the current scan (at t2)
+  double translation_error_m = 0.0;
+  double rotation_error_deg = 0.0;
+  double ms = 0.0;  ///< the match's time, the reference map's construction included
+  bool converged = true;
+  bool failed = false;
+  std::optional<Verdict> verdict;  ///< PairMatch::verdict
+  double confidence = std::numeric_limits<double>::quiet_NaN();
+  bool refined = false;          ///< PairMatch::refined
+  std::size_t search_cells = 0;  ///< PairMatch::search_cells
 };
 
 struct RelationEvalReport {
@@ -55,6 +103,7 @@ struct RelationEvalReport {
   int failures = 0;
   int not_converged = 0;   ///< ICP alone: matches that did not converge (counted as failures)
   double median_ms = 0.0;  ///< per match, the reference map's construction included
+  std::vector<RelationTrial> trials;  ///< every pair, in the order given
 };
 
 /// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
@@ -65,8 +114,15 @@ struct RelationEvalReport {
 Pose2 match_pair(const RangeScan& reference, const RangeScan& current, const Pose2& prior,
                  const RelationEvalOptions& options, bool* converged = nullptr);
 
+/// match_pair() with the search's verdict, confidence and size. Throws gridloc::Error also
+/// for options that fail validate() and for search grids over options.max_search_mb.
+PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& current,
+                              const Pose2& prior, const RelationEvalOptions& options);
+
 /// Matches every pair by options.matcher (the scan at t1 is the reference) and reports the
-/// errors. Throws gridloc::Error for no pairs or a pair index outside the log.
+/// errors, overall and per pair (RelationEvalReport::trials). Throws gridloc::Error for no
+/// pairs, a pair index outside the log, options that fail validate() or a pair whose search
+/// would exceed options.max_search_mb (naming the pair and the size).
 RelationEvalReport evaluate_relations(const CarmenLog& log, const std::vector<RelationPair>& pairs,
                                       const RelationEvalOptions& options = {});
 
