@@ -1,0 +1,149 @@
+// Tests of the relations protocol's per-pair trials, its size guard and its options' checks
+// (engine/src/evaluation/relations.cpp, issue 13), on a synthetic log of exact relations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "gridloc/engine/evaluation/relations.hpp"
+#include "gridloc/sensors/segment_world.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+/// A 7 m x 4 m room with a box and a pillar.
+std::vector<WallSegment> room() {
+  return {{{0, 0}, {7, 0}},         {{7, 0}, {7, 4}},       {{7, 4}, {0, 4}},
+          {{0, 4}, {0, 0}},         {{4.5, 1}, {5.3, 1}},   {{5.3, 1}, {5.3, 1.6}},
+          {{5.3, 1.6}, {4.5, 1.6}}, {{4.5, 1.6}, {4.5, 1}}, {{1, 2.8}, {1.3, 2.8}},
+          {{1.3, 2.8}, {1.3, 3.1}}};
+}
+
+/// A log of 360-beam scans at `poses` and the exact relations between consecutive ones.
+void synthetic(const std::vector<Pose2>& poses, CarmenLog& log, std::vector<RelationPair>& pairs) {
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    LaserRecord r;
+    r.timestamp = static_cast<double>(k);
+    r.scan = simulate_segment_scan(room(), poses[k], 360, -std::numbers::pi,
+                                   std::numbers::pi / 180.0, 20.0);
+    r.laser_pose = r.robot_pose = poses[k];
+    log.lasers.push_back(r);
+    if (k == 0) continue;
+    pairs.push_back({{static_cast<double>(k - 1), static_cast<double>(k),
+                      relative_pose(poses[k - 1], poses[k]), k},
+                     k - 1,
+                     k});
+  }
+}
+
+class RelationTrials : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    synthetic({{2.0, 1.5, 0.1}, {2.3, 1.7, 0.25}, {2.6, 2.0, 0.2}, {2.5, 2.2, -0.1}}, log, pairs);
+  }
+  CarmenLog log;
+  std::vector<RelationPair> pairs;
+};
+
+TEST_F(RelationTrials, OnePerPairAndTheTotalsFollowThem) {
+  RelationEvalOptions o;
+  o.matcher = EstimatorKind::CorrelationIcp;
+  const RelationEvalReport r = evaluate_relations(log, pairs, o);
+  ASSERT_EQ(r.trials.size(), 3u);
+  double mean = 0.0;
+  int failures = 0;
+  for (std::size_t k = 0; k < r.trials.size(); ++k) {
+    const RelationTrial& t = r.trials[k];
+    EXPECT_EQ(t.pair, k);
+    EXPECT_EQ(t.t1, static_cast<double>(k));
+    EXPECT_EQ(t.t2, static_cast<double>(k + 1));
+    EXPECT_NEAR(t.motion_m, std::hypot(pairs[k].relation.motion.x, pairs[k].relation.motion.y),
+                1e-12);
+    EXPECT_EQ(t.returns, 360);
+    ASSERT_TRUE(t.verdict.has_value());
+    EXPECT_TRUE(std::isfinite(t.confidence));
+    EXPECT_TRUE(t.refined);  // ICP's pose kept: exact relations
+    EXPECT_GT(t.search_cells, 0u);
+    EXPECT_LT(t.translation_error_m, 1e-3);
+    mean += t.translation_error_m / 3.0;
+    failures += t.failed ? 1 : 0;
+  }
+  EXPECT_EQ(r.failures, failures);
+  EXPECT_NEAR(r.translation_error_m.mean, mean, 1e-15);
+}
+
+TEST_F(RelationTrials, IcpTrialsHaveNoVerdict) {
+  const RelationEvalReport r = evaluate_relations(log, pairs, {});
+  ASSERT_EQ(r.trials.size(), 3u);
+  for (const RelationTrial& t : r.trials) {
+    EXPECT_FALSE(t.verdict.has_value());
+    EXPECT_TRUE(std::isnan(t.confidence));
+    EXPECT_EQ(t.search_cells, 0u);
+    EXPECT_TRUE(t.converged);
+  }
+}
+
+TEST_F(RelationTrials, MatchPairIsMatchRelationPair) {
+  RelationEvalOptions o;
+  o.matcher = EstimatorKind::Correlation;
+  const Pose2 prior{0.3, 0.15, 0.1};
+  bool converged = false;
+  const Pose2 p = match_pair(log.lasers[0].scan, log.lasers[1].scan, prior, o, &converged);
+  const PairMatch m = match_relation_pair(log.lasers[0].scan, log.lasers[1].scan, prior, o);
+  EXPECT_TRUE(converged);
+  EXPECT_EQ(p.x, m.pose.x);
+  EXPECT_EQ(p.y, m.pose.y);
+  EXPECT_EQ(p.theta, m.pose.theta);
+}
+
+TEST_F(RelationTrials, ExhaustiveAndBranchAndBoundAgree) {
+  RelationEvalOptions exhaustive, bnb;
+  exhaustive.matcher = bnb.matcher = EstimatorKind::Correlation;
+  bnb.correlation.strategy = SearchStrategy::BranchAndBound;
+  EXPECT_EQ(exhaustive.correlation.strategy, SearchStrategy::Exhaustive);
+  const RelationEvalReport a = evaluate_relations(log, pairs, exhaustive);
+  const RelationEvalReport b = evaluate_relations(log, pairs, bnb);
+  for (std::size_t k = 0; k < a.trials.size(); ++k) {
+    EXPECT_EQ(a.trials[k].translation_error_m, b.trials[k].translation_error_m) << k;
+    EXPECT_EQ(a.trials[k].rotation_error_deg, b.trials[k].rotation_error_deg) << k;
+    EXPECT_EQ(a.trials[k].verdict, b.trials[k].verdict) << k;
+  }
+}
+
+TEST_F(RelationTrials, ASearchTooLargeIsRefusedNamingThePairAndTheSize) {
+  RelationEvalOptions o;
+  o.matcher = EstimatorKind::Correlation;
+  o.max_search_mb = 0.5;
+  test::expect_error([&] { evaluate_relations(log, pairs, o); },
+                     {"relations: pair 0 (t1 0.000 s, t2 1.000 s)", "MB", "cells of 0.05 m",
+                      "max_search_mb = 0.5"});
+  // Branch and bound's pyramid makes the same pair about ten times larger.
+  o.max_search_mb = 5.0;
+  EXPECT_NO_THROW(evaluate_relations(log, pairs, o));
+  o.correlation.strategy = SearchStrategy::BranchAndBound;
+  test::expect_error([&] { evaluate_relations(log, pairs, o); }, {"pair 0", "max_search_mb = 5"});
+}
+
+TEST_F(RelationTrials, BadOptionsNameTheField) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto expect_bad = [&](auto change, const char* field) {
+    RelationEvalOptions o;
+    change(o);
+    test::expect_error([&] { validate(o); }, {field});
+    test::expect_error([&] { evaluate_relations(log, pairs, o); }, {field});
+  };
+  expect_bad([](RelationEvalOptions& o) { o.prior_noise_xy = -0.1; }, "prior_noise_xy");
+  expect_bad([&](RelationEvalOptions& o) { o.prior_noise_theta = nan; }, "prior_noise_theta");
+  expect_bad([](RelationEvalOptions& o) { o.failure_xy = 0.0; }, "failure_xy");
+  expect_bad([](RelationEvalOptions& o) { o.map_resolution = -0.05; }, "map_resolution");
+  expect_bad([](RelationEvalOptions& o) { o.window_margin_theta = -1.0; }, "window_margin_theta");
+  expect_bad([&](RelationEvalOptions& o) { o.refine_max_shift_m = nan; }, "refine_max_shift_m");
+  expect_bad([](RelationEvalOptions& o) { o.max_search_mb = 0.0; }, "max_search_mb");
+  EXPECT_NO_THROW(validate(RelationEvalOptions{}));
+}
+
+}  // namespace
+}  // namespace gridloc
