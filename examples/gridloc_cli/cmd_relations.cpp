@@ -163,6 +163,8 @@ void add_relations(CLI::App& app) {
   cmd->add_option("--refine-max-turn", args->options.refine_max_turn_rad,
                   "correlation+icp: ... and within this turn (rad)")
       ->capture_default_str();
+  cmd->add_flag("--icp-from-prior", args->options.icp_from_prior,
+                "correlation+icp: ICP from the prior too; the answer fitting more pairs wins");
   args->search.add_to(cmd);
   cmd->add_option("--max-search-mb", args->options.max_search_mb,
                   "refuse a pair whose correlation search grids would take more (MB)")

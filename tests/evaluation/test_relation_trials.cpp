@@ -75,6 +75,15 @@ TEST_F(RelationTrials, OnePerPairAndTheTotalsFollowThem) {
   EXPECT_NEAR(r.translation_error_m.mean, mean, 1e-15);
 }
 
+TEST_F(RelationTrials, IcpFromThePriorTooKeepsExactRelations) {
+  RelationEvalOptions o;
+  o.matcher = EstimatorKind::CorrelationIcp;
+  o.icp_from_prior = true;
+  const RelationEvalReport r = evaluate_relations(log, pairs, o);
+  EXPECT_EQ(r.failures, 0);
+  EXPECT_LT(r.translation_error_m.mean, 1e-3);
+}
+
 TEST_F(RelationTrials, IcpTrialsHaveNoVerdict) {
   const RelationEvalReport r = evaluate_relations(log, pairs, {});
   ASSERT_EQ(r.trials.size(), 3u);

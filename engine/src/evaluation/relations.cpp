@@ -111,15 +111,15 @@ Estimate correlate(const RangeScan& reference, const RangeScan& current,
 }
 
 /// ICP's pose from the search's `coarse` one when it converged within the refinement limits.
-std::optional<Pose2> refine_by_icp(const std::vector<Eigen::Vector2d>& reference_points,
-                                   const std::vector<Eigen::Vector2d>& current_points,
-                                   const Pose2& coarse, const RelationEvalOptions& options) {
+std::optional<IcpResult> refine_by_icp(const std::vector<Eigen::Vector2d>& reference_points,
+                                       const std::vector<Eigen::Vector2d>& current_points,
+                                       const Pose2& coarse, const RelationEvalOptions& options) {
   const IcpResult refined = icp_or_none(reference_points, current_points, coarse, options.icp);
   const bool near =
       std::hypot(refined.pose.x - coarse.x, refined.pose.y - coarse.y) <=
           options.refine_max_shift_m &&
       std::abs(normalize_angle(refined.pose.theta - coarse.theta)) <= options.refine_max_turn_rad;
-  if (refined.converged && near) return refined.pose;
+  if (refined.converged && near) return refined;
   return std::nullopt;
 }
 
@@ -191,7 +191,13 @@ PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& curre
   if (options.matcher == EstimatorKind::CorrelationIcp) {
     const auto refined = refine_by_icp(reference_points, current_points, coarse.pose, options);
     match.refined = refined.has_value();
-    if (refined) match.pose = *refined;
+    if (refined) match.pose = refined->pose;
+    if (options.icp_from_prior) {
+      // ICP from the prior too: its answer wins when it fits more pairs.
+      const IcpResult alt = icp_or_none(reference_points, current_points, prior, options.icp);
+      const std::size_t fitting = refined ? refined->fitting_pairs : 0;
+      if (alt.converged && alt.fitting_pairs > fitting) match.pose = alt.pose;
+    }
   }
   return match;
 }

@@ -53,6 +53,9 @@ struct RelationEvalOptions {
   /// Correlation + ICP: ICP's pose is kept when it converged within these of the search's.
   double refine_max_shift_m = 0.3;
   double refine_max_turn_rad = 0.0872664625997;  ///< 5 deg
+  /// Correlation + ICP: ICP also runs from the prior, and its pose wins when it converged
+  /// with more fitting pairs (IcpResult::fitting_pairs) than ICP from the search's.
+  bool icp_from_prior = false;
 };
 
 /// Checks the options; throws gridloc::Error naming the field and its value (negative or
