@@ -15,6 +15,7 @@ void add_relations(CLI::App& app);
 void add_heatmap(CLI::App& app);
 void add_hallway(CLI::App& app);
 void add_sectors(CLI::App& app);
+void add_track(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& pose);
 /// A number, or null when it is NaN (an AUROC without failures, a rate of nothing).

@@ -14,22 +14,6 @@
 namespace gridloc::cli {
 namespace {
 
-/// FRAC,DEG_PER_M of --odometry-noise.
-void parse_odometry_noise(const std::string& text, DriveEvalOptions& options) {
-  const std::size_t comma = text.find(',');
-  try {
-    if (comma == std::string::npos) throw std::invalid_argument(text);
-    std::size_t used = 0;
-    options.odometry_noise_frac = std::stod(text.substr(0, comma), &used);
-    const std::string rest = text.substr(comma + 1);
-    std::size_t used_rest = 0;
-    options.odometry_noise_rad_per_m = deg2rad(std::stod(rest, &used_rest));
-    if (used != comma || used_rest != rest.size()) throw std::invalid_argument(text);
-  } catch (const std::exception&) {
-    throw Error("--odometry-noise must be FRAC,DEG_PER_M (e.g. 0.02,1), not '" + text + "'");
-  }
-}
-
 /// Refuses the other protocols' options, and drive options out of range, by their flags.
 void check_args(const EvalArgs& args, const DriveArgs& drive) {
   if (!(drive.drive_m > 0.0) || !(drive.drive_m <= 20.0)) {
@@ -55,7 +39,9 @@ DriveEvalOptions drive_options(const EvalArgs& args, const DriveArgs& drive) {
   options.firings = drive.firings;
   options.global = !drive.windowed;
   options.fusion.max_distance_m = drive.window_m;
-  parse_odometry_noise(drive.odometry_noise, options);
+  const OdometryNoise noise = parse_odometry_noise(drive.odometry_noise);
+  options.odometry_noise_frac = noise.frac;
+  options.odometry_noise_rad_per_m = noise.rad_per_m;
   args.search.apply(options.search);
   options.search.resolution = options.window.step_xy = args.step_xy;
   options.noise = parse_noise(args.noise);

@@ -44,6 +44,23 @@ SonarSimOptions parse_noise(const std::string& text) {
   throw Error("--noise must be realistic or none, not '" + text + "'");
 }
 
+OdometryNoise parse_odometry_noise(const std::string& text) {
+  const std::size_t comma = text.find(',');
+  OdometryNoise noise;
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument(text);
+    std::size_t used = 0;
+    noise.frac = std::stod(text.substr(0, comma), &used);
+    const std::string rest = text.substr(comma + 1);
+    std::size_t used_rest = 0;
+    noise.rad_per_m = deg2rad(std::stod(rest, &used_rest));
+    if (used != comma || used_rest != rest.size()) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    throw Error("--odometry-noise must be FRAC,DEG_PER_M (e.g. 0.02,1), not '" + text + "'");
+  }
+  return noise;
+}
+
 GlobalModel parse_global(const std::string& text) {
   if (text == "thinned") return GlobalModel::Thinned;
   if (text == "raw") return GlobalModel::Raw;

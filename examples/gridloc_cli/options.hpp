@@ -5,6 +5,7 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/octomap_io.hpp"
+#include "gridloc/sensors/odometry_noise.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
 namespace gridloc::cli {
@@ -16,6 +17,8 @@ LocalModel parse_local(const std::string& text);
 GlobalModel parse_global(const std::string& text);
 /// The evaluations' --noise: "realistic" (SonarSimOptions::realistic) or "none".
 SonarSimOptions parse_noise(const std::string& text);
+/// FRAC,DEG_PER_M of --odometry-noise (length share, heading drift in degrees per metre).
+OdometryNoise parse_odometry_noise(const std::string& text);
 SearchStrategy parse_strategy(const std::string& text);
 ArcRule parse_arc_rule(const std::string& text);
 ScanModel parse_scan_model(const std::string& text);

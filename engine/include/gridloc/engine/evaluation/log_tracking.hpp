@@ -1,0 +1,67 @@
+#pragma once
+/// Running the Localizer through a CARMEN log (issue 13, `gridloc track`): each laser scan's
+/// odometry goes to add_odometry, every `every`-th scan to add_observation, and each
+/// processed scan's Estimate comes back with the path driven, the time it took and, when the
+/// log's poses are SLAM-corrected, its error against them.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "gridloc/engine/localizer/localizer.hpp"
+#include "gridloc/sensors/carmen_log.hpp"
+#include "gridloc/sensors/odometry_noise.hpp"
+
+namespace gridloc {
+
+/// Where the odometry comes from: the laser lines' robot pose fields (FLASER odom_x, odom_y,
+/// odom_theta; ROBOTLASER1's robot pose) or the ODOM lines, taken at each scan's time.
+enum class OdometrySource { Laser, Odom };
+
+/// "laser" or "odom".
+std::string to_string(OdometrySource source);
+/// The source to_string() names; gridloc::Error listing the choices otherwise.
+OdometrySource parse_odometry_source(const std::string& name);
+
+struct LogTrackingOptions {
+  LocalizerOptions localizer;
+  LaserSensor laser;  ///< its mount is the laser's pose on the robot (identity: at the centre)
+  OdometrySource odometry = OdometrySource::Laser;
+  /// Seeded systematic error added to the odometry (for logs whose poses are corrected);
+  /// unset: the odometry as logged.
+  std::optional<OdometryNoise> odometry_noise;
+  std::uint64_t seed = 1;
+  /// The pose at the first processed scan and its covariance; unset: localize globally.
+  std::optional<Pose2> prior;
+  Eigen::Matrix3d prior_covariance = Eigen::Vector3d(0.01, 0.01, 0.0076).asDiagonal();
+  int every = 1;  ///< process every `every`-th scan of `scans` (>= 1)
+  /// The scans (indices into the log's lasers, increasing) to run through; empty: all.
+  /// Odometry is fed at every one of them, observations at every `every`-th.
+  std::vector<std::size_t> scans;
+};
+
+/// One processed scan.
+struct TrackStep {
+  std::size_t index = 0;  ///< into the log's lasers
+  double time = 0.0;      ///< the scan's timestamp (s)
+  Estimate estimate;
+  double travelled_m = 0.0;  ///< odometry path length since the first scan run through
+  double timing_ms = 0.0;    ///< add_observation's wall time
+  /// Against the log's pose (the corrected one in SLAM-corrected logs): position error (m)
+  /// and heading error (degrees).
+  double error_m = 0.0;
+  double error_deg = 0.0;
+};
+
+/// Checks the options against `log`; throws gridloc::Error naming what is wrong (every < 1,
+/// scan indices outside the log or not increasing, ODOM odometry without ODOM lines or
+/// without usable timestamps, bad noise or prior).
+void validate(const LogTrackingOptions& options, const CarmenLog& log);
+
+/// Runs a Localizer built on `map` through `log` under `options`, calling `on_step` after
+/// each processed scan, in order (to print as it goes). Throws gridloc::Error for bad options
+/// (validate), a bad map or a scan the Localizer refuses (naming the scan's line).
+void track_log(const CarmenLog& log, const OccupancyMap& map, const LogTrackingOptions& options,
+               const std::function<void(const TrackStep&)>& on_step);
+
+}  // namespace gridloc

@@ -1,0 +1,164 @@
+// gridloc track: the Localizer run through a CARMEN log, one JSON object per processed scan
+// (JSON Lines) or a progress line and a summary (issue 13).
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "gridloc/engine/evaluation/log_tracking.hpp"
+#include "gridloc/grids/error.hpp"
+#include "options.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+struct TrackArgs {
+  std::string map, log, prior, odometry = "laser", odometry_noise;
+  bool global = false, json = false, truth = false;
+  int every = 1;
+  std::size_t start = 0, count = 0;
+  double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
+  std::uint64_t seed = 1;
+  double window_m = DriveWindowOptions{}.max_distance_m;
+};
+
+/// What the summary counts over the processed scans.
+struct TrackTally {
+  int steps = 0, localized = 0, ambiguous = 0, not_localized = 0, wrong_localized = 0;
+  double error_sum_m = 0.0, error_sum_deg = 0.0, time_ms = 0.0;
+
+  void add(const TrackStep& step, bool truth) {
+    ++steps;
+    time_ms += step.timing_ms;
+    const Verdict verdict = step.estimate.verdict;
+    localized += verdict == Verdict::Localized;
+    ambiguous += verdict == Verdict::Ambiguous;
+    not_localized += verdict == Verdict::NotLocalized;
+    if (!truth || verdict != Verdict::Localized) return;
+    error_sum_m += step.error_m;
+    error_sum_deg += step.error_deg;
+    wrong_localized += step.error_m > 0.1 || step.error_deg > 2.0;  // issue 13's laser success
+  }
+};
+
+nlohmann::json step_json(const TrackStep& step, bool truth) {
+  const Estimate& e = step.estimate;
+  const nlohmann::json estimate = cli::to_json(e);
+  nlohmann::json line = {{"index", step.index},
+                         {"time", step.time},
+                         {"pose", cli::to_json(e.pose)},
+                         {"verdict", to_string(e.verdict)},
+                         {"confidence", e.confidence},
+                         {"hypotheses", e.alternatives.size()},
+                         {"alternatives", estimate["alternatives"]},
+                         {"covariance", estimate["covariance"]},
+                         {"travelled_m", step.travelled_m},
+                         {"timing_ms", step.timing_ms}};
+  if (truth) {
+    line["error_m"] = step.error_m;
+    line["error_deg"] = step.error_deg;
+  }
+  return line;
+}
+
+/// The options the arguments give, checked against the log.
+LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
+                                    const OccupancyMap& map) {
+  if (args.global == !args.prior.empty()) throw Error("give one of --prior x,y,theta or --global");
+  LogTrackingOptions options;
+  options.localizer.correlation.resolution =
+      args.resolution > 0.0 ? args.resolution : map.geometry.resolution;
+  options.localizer.drive.max_distance_m = args.window_m;
+  options.laser.max_range = args.max_range;
+  options.odometry = parse_odometry_source(args.odometry);
+  if (!args.odometry_noise.empty())
+    options.odometry_noise = parse_odometry_noise(args.odometry_noise);
+  options.seed = args.seed;
+  if (!args.prior.empty()) options.prior = parse_pose(args.prior, "--prior");
+  const double sxy = args.prior_sigma_m, sth = deg2rad(args.prior_sigma_deg);
+  options.prior_covariance = Eigen::Vector3d(sxy * sxy, sxy * sxy, sth * sth).asDiagonal();
+  options.every = args.every;
+  if (args.start >= log.lasers.size()) {
+    throw Error("--start " + std::to_string(args.start) + " is past the log's " +
+                std::to_string(log.lasers.size()) + " scans");
+  }
+  const std::size_t end =
+      args.count == 0 ? log.lasers.size() : std::min(log.lasers.size(), args.start + args.count);
+  for (std::size_t k = args.start; k < end; ++k) options.scans.push_back(k);
+  return options;
+}
+
+void print_summary(const TrackTally& tally, bool truth) {
+  std::fprintf(stderr, "\n");
+  std::printf(
+      "%d scans: %d localized, %d ambiguous, %d not localized; %.1f ms per update (%.1f/s)\n",
+      tally.steps, tally.localized, tally.ambiguous, tally.not_localized,
+      tally.time_ms / std::max(1, tally.steps),
+      tally.time_ms > 0.0 ? 1000.0 * tally.steps / tally.time_ms : 0.0);
+  if (truth && tally.localized > 0) {
+    std::printf("localized: mean error %.3f m, %.2f deg; %d beyond 10 cm or 2 deg\n",
+                tally.error_sum_m / tally.localized, tally.error_sum_deg / tally.localized,
+                tally.wrong_localized);
+  }
+}
+
+void run(const TrackArgs& args) {
+  const OccupancyMap map = load_map(args.map);
+  const CarmenLog log = load_carmen_log(args.log);
+  const LogTrackingOptions options = tracking_options(args, log, map);
+  TrackTally tally;
+  track_log(log, map, options, [&](const TrackStep& step) {
+    tally.add(step, args.truth);
+    if (args.json) {
+      std::cout << step_json(step, args.truth).dump() << "\n" << std::flush;
+      return;
+    }
+    std::fprintf(stderr, "\rscan %zu/%zu: %s, %.1f m driven   ", step.index + 1, log.lasers.size(),
+                 to_string(step.estimate.verdict).c_str(), step.travelled_m);
+  });
+  if (!args.json) print_summary(tally, args.truth);
+}
+
+}  // namespace
+
+void add_track(CLI::App& app) {
+  auto args = std::make_shared<TrackArgs>();
+  auto* cmd = app.add_subcommand(
+      "track", "Run the Localizer through a CARMEN laser log (JSON Lines with --json)");
+  cmd->add_option("--map", args->map, "map: map_server YAML, OctoMap or polygon YAML")->required();
+  cmd->add_option("--log", args->log, "CARMEN log (FLASER / ROBOTLASER1 lines; .gz read too)")
+      ->required();
+  cmd->add_option("--prior", args->prior, "the pose at the first scan: x,y,theta (m, m, rad)");
+  cmd->add_flag("--global", args->global, "localize the first scans on the whole map");
+  cmd->add_option("--prior-sigma-m", args->prior_sigma_m, "--prior: its standard deviation (m)")
+      ->capture_default_str();
+  cmd->add_option("--prior-sigma-deg", args->prior_sigma_deg, "--prior: in heading (degrees)")
+      ->capture_default_str();
+  cmd->add_option("--every", args->every, "process every N-th scan (odometry from all)")
+      ->capture_default_str();
+  cmd->add_option("--start", args->start, "the first scan (0-based index)")->capture_default_str();
+  cmd->add_option("--count", args->count, "this many scans from --start (0: to the end)")
+      ->capture_default_str();
+  cmd->add_option("--odometry", args->odometry,
+                  "laser (the laser lines' pose fields) | odom (the ODOM lines)")
+      ->capture_default_str();
+  cmd->add_option("--odometry-noise", args->odometry_noise,
+                  "seeded systematic odometry error FRAC,DEG_PER_M (length share, heading drift "
+                  "per metre), for logs whose poses are corrected");
+  cmd->add_option("--seed", args->seed, "seed of --odometry-noise")->capture_default_str();
+  cmd->add_option("--max-range", args->max_range, "laser returns beyond this are no return (m)")
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution,
+                  "translation step and grid cell (m; 0: the map's cell)")
+      ->capture_default_str();
+  cmd->add_option("--drive-window-m", args->window_m,
+                  "scans up to this far back along the path join the latest")
+      ->capture_default_str();
+  cmd->add_flag("--truth-from-log", args->truth,
+                "the log's poses are the truth (SLAM-corrected logs): add error_m, error_deg");
+  cmd->add_flag("--json", args->json, "one JSON object per processed scan (JSON Lines)");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace gridloc::cli

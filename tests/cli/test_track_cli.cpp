@@ -1,0 +1,115 @@
+// End-to-end tests of `gridloc track` (issue 13): the Localizer through a CARMEN log of front
+// scans simulated in a corridor, its JSON Lines contract, odometry from the laser lines or
+// from ODOM lines, and bad input as one error line with exit status 2.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../localizer/laser_cases.hpp"
+#include "cli_support.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+using test::expect_cli_error;
+using test::lines;
+using test::quote;
+using test::run_cli;
+using test::TempDir;
+
+/// A drive along the corridor from x = 8.5 to 11.5, 0.25 m a scan, one scan a second.
+std::vector<Pose2> corridor_drive() {
+  std::vector<Pose2> poses;
+  for (int k = 0; k <= 12; ++k) poses.push_back({8.5 + 0.25 * k, 2.5 + 0.02 * (k % 3), 0.01 * k});
+  return poses;
+}
+
+/// A CARMEN log of 181-beam front scans (3 m) at `poses`; with ODOM lines when `odom`.
+std::string corridor_log(const TempDir& dir, const std::vector<Pose2>& poses, bool odom) {
+  const OccupancyMap map = test::door_corridor();
+  std::ostringstream log;
+  char buf[96];
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const Pose2& p = poses[k];
+    const RangeScan scan = test::front_scan(map, p, 3.0);
+    std::snprintf(buf, sizeof buf, " %.6f %.6f %.6f", p.x, p.y, p.theta);
+    if (odom) log << "ODOM" << buf << " 0 0 0 " << k << ".0 test " << k << ".0\n";
+    log << "FLASER " << scan.ranges.size();
+    for (double r : scan.ranges) log << " " << (r >= 3.0 ? 81.91 : r);
+    log << buf << buf << " " << k << ".0 test " << k << ".0\n";
+  }
+  return dir.write(odom ? "corridor_odom.log" : "corridor.log", log.str());
+}
+
+class TrackCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    map = dir.file("corridor.yaml");
+    save_ros_map(test::door_corridor(), map);
+    log = corridor_log(dir, corridor_drive(), false);
+  }
+  std::vector<nlohmann::json> track(const std::string& extra) {
+    const test::CliRun run = run_cli(dir, "track --map " + quote(map) + " --log " + quote(log) +
+                                              " --max-range 3 --json --truth-from-log " + extra);
+    EXPECT_EQ(run.status, 0) << run.err;
+    std::vector<nlohmann::json> steps;
+    for (const std::string& line : lines(run.out)) steps.push_back(nlohmann::json::parse(line));
+    return steps;
+  }
+  TempDir dir;
+  std::string map, log;
+};
+
+TEST_F(TrackCli, FromAPriorEveryScanIsTrackedWithTheContractsFields) {
+  const std::vector<nlohmann::json> steps = track("--prior 8.55,2.45,0.02");
+  ASSERT_EQ(steps.size(), corridor_drive().size());
+  for (const nlohmann::json& step : steps) {
+    for (const char* field :
+         {"index", "time", "pose", "verdict", "confidence", "hypotheses", "alternatives",
+          "covariance", "travelled_m", "timing_ms", "error_m", "error_deg"}) {
+      EXPECT_TRUE(step.contains(field)) << field;
+    }
+    EXPECT_LE(step["error_m"].get<double>(), 0.10) << step.dump();  // issue 13: laser success
+    EXPECT_LE(step["error_deg"].get<double>(), 2.0) << step.dump();
+  }
+  EXPECT_NEAR(steps.back()["travelled_m"].get<double>(), 3.0, 0.05);
+  EXPECT_EQ(steps.back()["index"].get<int>(), 12);
+}
+
+TEST_F(TrackCli, GloballyTheDriveEndsLocalizedAtTheTruth) {
+  const std::vector<nlohmann::json> steps = track("--global --every 2 --odometry-noise 0.02,1");
+  ASSERT_EQ(steps.size(), 7u);  // scans 0, 2, ..., 12
+  EXPECT_EQ(steps.back()["verdict"], "localized");
+  EXPECT_LE(steps.back()["error_m"].get<double>(), 0.05);
+}
+
+TEST_F(TrackCli, OdometryFromOdomLines) {
+  log = corridor_log(dir, corridor_drive(), true);
+  const std::vector<nlohmann::json> steps = track("--prior 8.5,2.5,0 --odometry odom");
+  ASSERT_EQ(steps.size(), corridor_drive().size());
+  EXPECT_LE(steps.back()["error_m"].get<double>(), 0.05);
+}
+
+TEST_F(TrackCli, BadInputIsOneErrorLine) {
+  const std::string base = "track --map " + quote(map) + " --log " + quote(log) + " ";
+  expect_cli_error(run_cli(dir, base + "--prior 1,2,0 --global"), {"--prior", "--global"});
+  expect_cli_error(run_cli(dir, base), {"--prior", "--global"});
+  expect_cli_error(run_cli(dir, base + "--global --odometry wheels"), {"odometry", "wheels"});
+  expect_cli_error(run_cli(dir, base + "--global --odometry odom"), {"ODOM"});
+  expect_cli_error(run_cli(dir, base + "--global --every 0"), {"--every"});
+  expect_cli_error(run_cli(dir, base + "--global --start 99"), {"--start", "13 scans"});
+  expect_cli_error(run_cli(dir, base + "--global --odometry-noise 0.02"), {"--odometry-noise"});
+  expect_cli_error(run_cli(dir, base + "--prior 1,x,0"), {"--prior"});
+  expect_cli_error(run_cli(dir, "track --map " + quote(map) + " --global --log " +
+                                    quote(dir.file("missing.log"))),
+                   {"missing.log"});
+}
+
+}  // namespace
+}  // namespace gridloc
