@@ -1,5 +1,6 @@
 // gridloc track: the Localizer run through a CARMEN log, one JSON object per processed scan
 // (JSON Lines) or a progress line and a summary (issue 13).
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -21,6 +22,8 @@ struct TrackArgs {
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
   std::uint64_t seed = 1;
   double window_m = DriveWindowOptions{}.max_distance_m;
+  GlobalTrialOptions trials;  ///< --trials N (0: track the log once)
+  int trial_count = 0;
 };
 
 /// What the summary counts over the processed scans.
@@ -66,6 +69,8 @@ nlohmann::json step_json(const TrackStep& step, bool truth) {
 LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
                                     const OccupancyMap& map) {
   if (args.global == !args.prior.empty()) throw Error("give one of --prior x,y,theta or --global");
+  if (args.trial_count < 0) throw Error("--trials must be >= 0");
+  if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
   LogTrackingOptions options;
   options.localizer.correlation.resolution =
       args.resolution > 0.0 ? args.resolution : map.geometry.resolution;
@@ -103,10 +108,81 @@ void print_summary(const TrackTally& tally, bool truth) {
   }
 }
 
+/// The verdict and error of one answer, for a trial's JSON.
+nlohmann::json answer_json(const TrackStep& step, const GlobalTrialOptions& options) {
+  return {{"index", step.index},           {"verdict", to_string(step.estimate.verdict)},
+          {"right", right(step, options)}, {"error_m", step.error_m},
+          {"error_deg", step.error_deg},   {"travelled_m", step.travelled_m},
+          {"timing_ms", step.timing_ms}};
+}
+
+/// What the trials' summary counts.
+struct TrialTally {
+  int trials = 0, standstill_right = 0, standstill_wrong = 0, end_right = 0, end_wrong = 0;
+  int localized = 0;
+  double localized_after_m = 0.0;
+
+  void add(const GlobalTrial& trial, const GlobalTrialOptions& options) {
+    ++trials;
+    const auto wrong = [&](const TrackStep& step) {
+      return step.estimate.verdict == Verdict::Localized && !right(step, options);
+    };
+    standstill_right += right(trial.standstill, options);
+    standstill_wrong += wrong(trial.standstill);
+    end_right += right(trial.end, options);
+    end_wrong += wrong(trial.end);
+    if (trial.localized_after_m) {
+      ++localized;
+      localized_after_m += *trial.localized_after_m;
+    }
+  }
+  nlohmann::json to_json() const {
+    const auto share = [this](int n) { return trials > 0 ? 100.0 * n / trials : 0.0; };
+    return {{"trials", trials},
+            {"standstill_success_pct", share(standstill_right)},
+            {"standstill_localized_wrong_pct", share(standstill_wrong)},
+            {"drive_success_pct", share(end_right)},
+            {"drive_localized_wrong_pct", share(end_wrong)},
+            {"mean_localized_after_m",
+             number_or_null(localized > 0 ? localized_after_m / localized : std::nan(""))}};
+  }
+};
+
+/// --trials: global localization from a standstill and from a drive, from seeded starts.
+void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap& map,
+                const LogTrackingOptions& options) {
+  Localizer localizer(map, options.laser, options.localizer);
+  GlobalTrialOptions trials = args.trials;
+  trials.trials = args.trial_count;
+  TrialTally tally;
+  run_global_trials(log, localizer, options, options.scans, trials, [&](const GlobalTrial& trial) {
+    tally.add(trial, trials);
+    if (args.json) {
+      const nlohmann::json line = {
+          {"trial", tally.trials - 1},
+          {"start", trial.start},
+          {"standstill", answer_json(trial.standstill, trials)},
+          {"end", answer_json(trial.end, trials)},
+          {"localized_after_m", number_or_null(trial.localized_after_m.value_or(std::nan("")))},
+          {"wrong_localized", trial.wrong_localized}};
+      std::cout << line.dump() << "\n" << std::flush;
+    } else {
+      std::fprintf(stderr, "\rtrial %d/%d   ", tally.trials, trials.trials);
+    }
+  });
+  if (args.json) {
+    std::cout << nlohmann::json{{"summary", tally.to_json()}}.dump() << "\n";
+  } else {
+    std::fprintf(stderr, "\n");
+    std::cout << tally.to_json().dump(2) << "\n";
+  }
+}
+
 void run(const TrackArgs& args) {
   const OccupancyMap map = load_map(args.map);
   const CarmenLog log = load_carmen_log(args.log);
   const LogTrackingOptions options = tracking_options(args, log, map);
+  if (args.trial_count > 0) return run_trials(args, log, map, options);
   TrackTally tally;
   track_log(log, map, options, [&](const TrackStep& step) {
     tally.add(step, args.truth);
@@ -154,6 +230,12 @@ void add_track(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--drive-window-m", args->window_m,
                   "scans up to this far back along the path join the latest")
+      ->capture_default_str();
+  cmd->add_option("--trials", args->trial_count,
+                  "with --global: this many global localizations from seeded starts, each "
+                  "driving on until --drive-m; prints each trial and a summary")
+      ->capture_default_str();
+  cmd->add_option("--drive-m", args->trials.drive_m, "--trials: the drive's length (m)")
       ->capture_default_str();
   cmd->add_flag("--truth-from-log", args->truth,
                 "the log's poses are the truth (SLAM-corrected logs): add error_m, error_deg");

@@ -125,9 +125,16 @@ void validate(const LogTrackingOptions& options, const CarmenLog& log) {
 void track_log(const CarmenLog& log, const OccupancyMap& map, const LogTrackingOptions& options,
                const std::function<void(const TrackStep&)>& on_step) {
   validate(options, log);
+  Localizer localizer(map, options.laser, options.localizer);
+  track_log(log, localizer, options, on_step);
+}
+
+void track_log(const CarmenLog& log, Localizer& localizer, const LogTrackingOptions& options,
+               const std::function<void(const TrackStep&)>& on_step) {
+  validate(options, log);
   const std::vector<std::size_t> scans = selected_scans(options, log);
   const std::vector<Pose2> odometry = odometry_of(log, scans, options);
-  Localizer localizer(map, options.laser, options.localizer);
+  localizer.reset();
   double travelled_m = 0.0;
   for (std::size_t k = 0; k < scans.size(); ++k) {
     if (k > 0) {
@@ -140,6 +147,57 @@ void track_log(const CarmenLog& log, const OccupancyMap& map, const LogTrackingO
     TrackStep step = observe(localizer, log.lasers[scans[k]], scans[k]);
     step.travelled_m = travelled_m;
     on_step(step);
+    if (options.max_travel_m > 0.0 && travelled_m >= options.max_travel_m) return;
+  }
+}
+
+bool right(const TrackStep& step, const GlobalTrialOptions& options) {
+  return step.estimate.verdict == Verdict::Localized && step.error_m <= options.success_m &&
+         step.error_deg <= options.success_deg;
+}
+
+namespace {
+
+/// One trial from candidates[first] on.
+GlobalTrial global_trial(const CarmenLog& log, Localizer& localizer, LogTrackingOptions tracking,
+                         const std::vector<std::size_t>& candidates, std::size_t first,
+                         const GlobalTrialOptions& options) {
+  tracking.prior.reset();
+  tracking.scans.assign(candidates.begin() + static_cast<std::ptrdiff_t>(first), candidates.end());
+  tracking.max_travel_m = options.drive_m;
+  GlobalTrial trial;
+  trial.start = candidates[first];
+  bool first_step = true;
+  track_log(log, localizer, tracking, [&](const TrackStep& step) {
+    if (first_step) trial.standstill = step;
+    first_step = false;
+    trial.end = step;
+    const bool localized = step.estimate.verdict == Verdict::Localized;
+    if (localized && !trial.localized_after_m) trial.localized_after_m = step.travelled_m;
+    trial.wrong_localized += localized && !right(step, options);
+  });
+  return trial;
+}
+
+}  // namespace
+
+void run_global_trials(const CarmenLog& log, Localizer& localizer,
+                       const LogTrackingOptions& tracking,
+                       const std::vector<std::size_t>& candidates,
+                       const GlobalTrialOptions& options,
+                       const std::function<void(const GlobalTrial&)>& on_trial) {
+  if (candidates.empty()) throw Error("global trials: no scan to start from");
+  if (options.trials < 1) throw Error("global trials: --trials must be at least 1");
+  if (!(options.drive_m >= 0.0) || !std::isfinite(options.drive_m)) {
+    throw Error("global trials: the drive length must be finite and >= 0");
+  }
+  Rng rng(options.seed);
+  for (int t = 0; t < options.trials; ++t) {
+    const std::size_t first = static_cast<std::size_t>(rng.uniform() * candidates.size());
+    LogTrackingOptions noisy = tracking;
+    noisy.seed = tracking.seed + static_cast<std::uint64_t>(t);
+    on_trial(global_trial(log, localizer, noisy, candidates, std::min(first, candidates.size() - 1),
+                          options));
   }
 }
 

@@ -38,6 +38,9 @@ struct LogTrackingOptions {
   /// The scans (indices into the log's lasers, increasing) to run through; empty: all.
   /// Odometry is fed at every one of them, observations at every `every`-th.
   std::vector<std::size_t> scans;
+  /// Stop after the first processed scan at which the odometry path reaches this (m); 0: run
+  /// to the last scan.
+  double max_travel_m = 0.0;
 };
 
 /// One processed scan.
@@ -63,5 +66,42 @@ void validate(const LogTrackingOptions& options, const CarmenLog& log);
 /// (validate), a bad map or a scan the Localizer refuses (naming the scan's line).
 void track_log(const CarmenLog& log, const OccupancyMap& map, const LogTrackingOptions& options,
                const std::function<void(const TrackStep&)>& on_step);
+
+/// The same with a Localizer built once (for many runs on one map): it is reset() first,
+/// and options.localizer and options.laser are not used (the Localizer has its own).
+void track_log(const CarmenLog& log, Localizer& localizer, const LogTrackingOptions& options,
+               const std::function<void(const TrackStep&)>& on_step);
+
+/// Global localization on a log from a standstill and from a short drive (issue 13): each
+/// trial starts at a scan drawn from the candidates, localizes globally, and drives on
+/// through the later candidates until the odometry path reaches drive_m.
+struct GlobalTrialOptions {
+  int trials = 20;
+  double drive_m = 5.0;
+  std::uint64_t seed = 1;   ///< draws the starts; trial t's odometry noise has seed + t
+  double success_m = 0.10;  ///< an answer within these of the log's pose is right (laser)
+  double success_deg = 2.0;
+};
+
+struct GlobalTrial {
+  std::size_t start = 0;
+  TrackStep standstill;                     ///< the first scan's answer
+  TrackStep end;                            ///< the answer at the end of the drive
+  std::optional<double> localized_after_m;  ///< the path driven at the first `localized`
+  int wrong_localized = 0;                  ///< `localized` answers beyond success_m / success_deg
+};
+
+/// Whether `step` is `localized` within the options' tolerances.
+bool right(const TrackStep& step, const GlobalTrialOptions& options);
+
+/// Runs options.trials trials (starts drawn uniformly from `candidates`, the increasing scan
+/// indices a trial may use, e.g. a log's held-out part) with `tracking`'s odometry and noise
+/// (its prior is ignored: global), calling `on_trial` after each. Throws gridloc::Error for
+/// bad options or no candidates.
+void run_global_trials(const CarmenLog& log, Localizer& localizer,
+                       const LogTrackingOptions& tracking,
+                       const std::vector<std::size_t>& candidates,
+                       const GlobalTrialOptions& options,
+                       const std::function<void(const GlobalTrial&)>& on_trial);
 
 }  // namespace gridloc
