@@ -3,11 +3,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "gzip_stream.hpp"
 #include "text_lines.hpp"
 
 namespace gridloc {
@@ -170,17 +170,18 @@ CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
 
 CarmenLog load_carmen_log(const std::string& path, const CarmenOptions& options) {
   if (!std::filesystem::exists(path)) throw Error(path + ": CARMEN log not found");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot read the CARMEN log");
-  if (in.peek() == 0x1f) {
-    char magic[2] = {};
-    in.read(magic, 2);
-    if (static_cast<unsigned char>(magic[1]) == 0x8b) {
-      throw Error(path + ": gzip-compressed; decompress it first (gunzip)");
-    }
-    in.seekg(0);
+  if (options.max_decompressed_bytes == 0) {
+    throw Error("CARMEN log options: max_decompressed_bytes must be > 0");
   }
-  return parse_carmen_log(in, path, options);
+  detail::GzipStream in(path, options.max_decompressed_bytes);
+  try {
+    CarmenLog log = parse_carmen_log(in, path, options);
+    in.check();
+    return log;
+  } catch (const Error&) {
+    in.check();  // a line cut short by corrupt data: the corruption is the error to report
+    throw;
+  }
 }
 
 }  // namespace gridloc

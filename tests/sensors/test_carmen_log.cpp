@@ -1,11 +1,14 @@
 // Tests of sensors/src/carmen_log.cpp: CARMEN logs (FLASER, ROBOTLASER1, ODOM) from a
-// hand-written excerpt, a real log from ../shared/datasets, and malformed input.
+// hand-written excerpt, plain and gzip-compressed, real logs from ../shared/datasets, and
+// malformed input.
 #include "gridloc/sensors/carmen_log.hpp"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -92,11 +95,94 @@ TEST(CarmenLog, FileErrors) {
   test::TempDir dir;
   const std::string missing = dir.file("none.log");
   test::expect_error([&] { load_carmen_log(missing); }, {missing, "not found"});
-  const std::string gz = dir.write("log.gz", std::string("\x1f\x8b\x08\x00", 4));
-  test::expect_error([&] { load_carmen_log(gz); }, {gz, "gzip", "gunzip"});
   const std::string ok = dir.write("ok.log", "ODOM 0 0 0 0 0 0 1 h 1\n");
   EXPECT_EQ(load_carmen_log(ok).odometry.size(), 1u);
   test::expect_error([&] { load_carmen_log(ok, CarmenOptions{-1.0}); }, {"max_range"});
+  test::expect_error(
+      [&] {
+        load_carmen_log(ok, CarmenOptions{80.0, 0});
+      },
+      {"max_decompressed_bytes"});
+}
+
+const char* const kExcerpt =
+    "PARAM robot_front_laser_max 81.9 nohost 0\n"
+    "ODOM 1.5 -2 0.25 0.3 -0.1 0 12.5 pippo 12.5\n"
+    "FLASER 3 1.0 2.5 81.91 0.5 0.25 -1.5 0.4 0.2 -1.4 13.25 pippo 13.25\n"
+    "FLASER 4 1 2 3 4 0 0 0 0 0 0 14 pippo 14\n";
+
+/// `text` gzip-compressed by zlib, as gzip(1) writes it.
+std::string gzip(const std::string& text, const test::TempDir& dir) {
+  const std::string path = dir.file("compressed.gz");
+  gzFile file = gzopen(path.c_str(), "wb");
+  EXPECT_NE(file, nullptr);
+  // A long text, so the compressed data span several blocks and can be cut in the middle.
+  EXPECT_EQ(gzwrite(file, text.data(), static_cast<unsigned>(text.size())),
+            static_cast<int>(text.size()));
+  gzclose(file);
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+void expect_same(const CarmenLog& a, const CarmenLog& b) {
+  ASSERT_EQ(a.lasers.size(), b.lasers.size());
+  ASSERT_EQ(a.odometry.size(), b.odometry.size());
+  for (std::size_t k = 0; k < a.lasers.size(); ++k) {
+    EXPECT_EQ(a.lasers[k].scan.ranges, b.lasers[k].scan.ranges);
+    EXPECT_EQ(a.lasers[k].scan.angles, b.lasers[k].scan.angles);
+    EXPECT_EQ(a.lasers[k].laser_pose.x, b.lasers[k].laser_pose.x);
+    EXPECT_EQ(a.lasers[k].timestamp, b.lasers[k].timestamp);
+    EXPECT_EQ(a.lasers[k].line, b.lasers[k].line);
+  }
+  for (std::size_t k = 0; k < a.odometry.size(); ++k) {
+    EXPECT_EQ(a.odometry[k].pose.y, b.odometry[k].pose.y);
+  }
+}
+
+TEST(CarmenLog, ReadsGzipAsItReadsPlainText) {
+  test::TempDir dir;
+  std::string text;
+  for (int k = 0; k < 2000; ++k) text += kExcerpt;  // ~300 kB: several zlib buffers
+  const std::string plain = dir.write("plain.log", text);
+  const std::string gz = dir.write("log.gz", gzip(text, dir));
+  const CarmenLog a = load_carmen_log(plain), b = load_carmen_log(gz);
+  EXPECT_EQ(a.lasers.size(), 4000u);
+  expect_same(a, b);
+  // The name does not matter: a gzip named .log is read, a plain file named .gz too.
+  expect_same(a, load_carmen_log(dir.write("gzip-named.log", gzip(text, dir))));
+  expect_same(a, load_carmen_log(dir.write("plain-named.gz", text)));
+}
+
+TEST(CarmenLog, CorruptOrTruncatedGzipNamesTheFile) {
+  test::TempDir dir;
+  std::string text;
+  for (int k = 0; k < 2000; ++k) text += kExcerpt;
+  const std::string compressed = gzip(text, dir);
+  const std::string cut = dir.write("cut.log.gz", compressed.substr(0, compressed.size() / 2));
+  test::expect_error([&] { load_carmen_log(cut); }, {cut, "truncated gzip"});
+  std::string damaged = compressed;
+  for (std::size_t k = 20; k < 60; ++k) damaged[k] = static_cast<char>(damaged[k] ^ 0x5a);
+  const std::string bad = dir.write("bad.log.gz", damaged);
+  test::expect_error([&] { load_carmen_log(bad); }, {bad, "corrupt gzip"});
+  const std::string header = dir.write("header.gz", std::string("\x1f\x8b\x08\x00", 4));
+  test::expect_error([&] { load_carmen_log(header); }, {header, "gzip"});
+}
+
+TEST(CarmenLog, TheTextReadIsBounded) {
+  test::TempDir dir;
+  std::string text;
+  for (int k = 0; k < 2000; ++k) text += kExcerpt;
+  const std::string gz = dir.write("log.gz", gzip(text, dir));
+  CarmenOptions options;
+  options.max_decompressed_bytes = 100000;  // a third of the text
+  test::expect_error([&] { load_carmen_log(gz, options); },
+                     {gz, "more than 100000 bytes", "max_decompressed_bytes"});
+  const std::string plain = dir.write("plain.log", text);
+  test::expect_error([&] { load_carmen_log(plain, options); }, {plain, "more than 100000"});
+  options.max_decompressed_bytes = text.size();
+  EXPECT_EQ(load_carmen_log(gz, options).lasers.size(), 4000u);
 }
 
 // A real log nobody here produced: the GMapping-corrected Intel lab log.

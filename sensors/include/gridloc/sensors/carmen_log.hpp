@@ -2,6 +2,7 @@
 /// CARMEN robot logs (the format of the public SLAM datasets): laser scans and odometry with
 /// their timestamps, read from `FLASER`, `ROBOTLASER1` and `ODOM` lines. Other lines
 /// (`PARAM`, `SYNC`, `NEFF`, ...) and `#` comments are skipped.
+#include <cstddef>
 #include <istream>
 #include <string>
 #include <vector>
@@ -15,6 +16,10 @@ struct CarmenOptions {
   /// FLASER lines carry no maximum range: ranges at or beyond this (m) are "no return" (SICK
   /// scanners report about 81.9 m for no echo).
   double max_range = 80.0;
+  /// load_carmen_log reads at most this many bytes of log text (after decompression, for a
+  /// gzip file), so a bad file cannot fill the memory: 2 GiB, 200 times the largest log of
+  /// ../shared/datasets (freiburg-079, 9.5 MB).
+  std::size_t max_decompressed_bytes = std::size_t{2} << 30;
 };
 
 /// One laser scan of the log.
@@ -56,8 +61,10 @@ struct CarmenLog {
 CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
                            const CarmenOptions& options = {});
 
-/// parse_carmen_log of a file; gridloc::Error when it is missing, unreadable or gzip-compressed
-/// (decompress it first: gunzip).
+/// parse_carmen_log of a file, plain or gzip-compressed (`.log.gz`, recognised by its content,
+/// not its name). Throws gridloc::Error naming the file when it is missing or unreadable, when
+/// its gzip data are corrupt or truncated, or when it holds more than
+/// options.max_decompressed_bytes of text.
 CarmenLog load_carmen_log(const std::string& path, const CarmenOptions& options = {});
 
 }  // namespace gridloc
