@@ -43,12 +43,17 @@ class Fields {
     }
     return {x, y, theta};
   }
-  /// The unit of the last digit of the field just read ("940.54" -> 0.01, "12" -> 1).
+  /// The unit of the last digit of the field just read ("940.54" -> 0.01, "12" -> 1,
+  /// "1.13486e+09" -> 10000).
   double last_resolution() const {
     const std::string& text = tokens_[next_ - 1];
-    const auto dot = text.find('.');
-    if (dot == std::string::npos || text.find_first_of("eE") != std::string::npos) return 1.0;
-    return std::pow(10.0, -static_cast<double>(text.size() - dot - 1));
+    const auto e = text.find_first_of("eE");
+    const std::string mantissa = text.substr(0, e);
+    const auto dot = mantissa.find('.');
+    const double decimals = dot == std::string::npos ? 0.0 : double(mantissa.size() - dot - 1);
+    const double exponent =
+        e == std::string::npos ? 0.0 : std::strtod(text.c_str() + e + 1, nullptr);
+    return std::pow(10.0, exponent - decimals);
   }
   void skip(std::size_t tokens) { next_ += tokens; }
   bool done() const { return next_ >= tokens_.size(); }

@@ -84,6 +84,19 @@ TEST(CarmenLog, MalformedLinesNameTheLineAndField) {
                      {"laser pose", "not finite"});
 }
 
+TEST(CarmenLog, TimestampResolutionIsTheUnitOfTheLastDigit) {
+  const CarmenLog log = parse(
+      "FLASER 2 1 2 0 0 0 0 0 0 1777.35 h 1\n"
+      "FLASER 2 1 2 0 0 0 0 0 0 14 h 1\n"
+      "FLASER 2 1 2 0 0 0 0 0 0 1.13486e+09 h 1\n"  // csail's absolute times: 10^4 s
+      "FLASER 2 1 2 0 0 0 0 0 0 25E-1 h 1\n");
+  ASSERT_EQ(log.lasers.size(), 4u);
+  EXPECT_NEAR(log.lasers[0].timestamp_resolution, 0.01, 1e-15);
+  EXPECT_EQ(log.lasers[1].timestamp_resolution, 1.0);
+  EXPECT_NEAR(log.lasers[2].timestamp_resolution, 1e4, 1e-9);
+  EXPECT_NEAR(log.lasers[3].timestamp_resolution, 0.1, 1e-15);
+}
+
 TEST(CarmenLog, InvalidBeamsReadAsNoReturn) {
   const CarmenLog log = parse("FLASER 3 1 nan inf 0 0 0 0 0 0 1 h 1\n");
   ASSERT_EQ(log.lasers.size(), 1u);
