@@ -1,0 +1,226 @@
+#include "gridloc/sensors/log_map.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+/// A number as the messages print it.
+std::string number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void require_positive(double value, const char* field) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw Error(std::string("map from log: ") + field + " must be > 0 and finite, got " +
+                number(value));
+  }
+}
+
+void require_non_negative(double value, const char* field) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    throw Error(std::string("map from log: ") + field + " must be >= 0 and finite, got " +
+                number(value));
+  }
+}
+
+/// validate() of a scan, except that a scan without any return passes: it draws no hit.
+void check_scan(const RangeScan& scan) {
+  const bool any_return = std::any_of(scan.ranges.begin(), scan.ranges.end(),
+                                      [&](double r) { return r < scan.max_range; });
+  if (any_return) return validate(scan);
+  RangeScan with_return = scan;  // rare: checked with one return added
+  with_return.angles.push_back(0.0);
+  with_return.ranges.push_back(0.0);
+  validate(with_return);
+}
+
+/// Throws gridloc::Error for no index, an index past the log, a laser pose that is not finite
+/// or a scan that fails check_scan.
+void check_scans(const std::vector<LaserRecord>& lasers, const std::vector<std::size_t>& indices) {
+  if (indices.empty()) throw Error("map from log: no scan to draw the map from");
+  for (const std::size_t k : indices) {
+    if (k >= lasers.size()) {
+      throw Error("map from log: scan index " + std::to_string(k) + " is past the log's " +
+                  std::to_string(lasers.size()) + " scans");
+    }
+    const LaserRecord& r = lasers[k];
+    const std::string where = "map from log: the scan of line " + std::to_string(r.line) + ": ";
+    if (!std::isfinite(r.laser_pose.x) || !std::isfinite(r.laser_pose.y) ||
+        !std::isfinite(r.laser_pose.theta)) {
+      throw Error(where + "the laser pose is not finite");
+    }
+    try {
+      check_scan(r.scan);
+    } catch (const Error& e) {
+      throw Error(where + e.what());
+    }
+  }
+}
+
+/// One beam as drawn: from the laser to `to` (world frame, m); `hit` when its end is a return.
+struct Beam {
+  Eigen::Vector2d from, to;
+  bool hit = false;
+};
+
+/// Beam k of `record` as options draw it, or false when it is not drawn (a zero range, a beam
+/// without a usable return when no_return_free_m is 0).
+bool drawn_beam(const LaserRecord& record, std::size_t k, const LogMapOptions& options,
+                Beam& beam) {
+  const double range = record.scan.ranges[k];
+  beam.hit = range < record.scan.max_range && range <= options.max_range_m;
+  if (range <= 0.0 || (!beam.hit && options.no_return_free_m <= 0.0)) return false;
+  const double length = beam.hit ? range : options.no_return_free_m;
+  const Pose2& p = record.laser_pose;
+  const double a = p.theta + record.scan.angles[k];
+  beam.from = {p.x, p.y};
+  beam.to = {p.x + length * std::cos(a), p.y + length * std::sin(a)};
+  return true;
+}
+
+/// Calls visit(beam) for every beam the scans `indices` draw.
+template <typename Visit>
+void for_each_beam(const std::vector<LaserRecord>& lasers, const std::vector<std::size_t>& indices,
+                   const LogMapOptions& options, Visit&& visit) {
+  Beam beam;
+  for (const std::size_t i : indices) {
+    for (std::size_t k = 0; k < lasers[i].scan.ranges.size(); ++k) {
+      if (drawn_beam(lasers[i], k, options, beam)) visit(beam);
+    }
+  }
+}
+
+/// The grid spanning every laser position and drawn beam end plus the margin; throws
+/// gridloc::Error when it would hold more than options.max_cells cells.
+GridGeometry grid_for(const std::vector<LaserRecord>& lasers,
+                      const std::vector<std::size_t>& indices, const LogMapOptions& options) {
+  const Eigen::Vector2d first(lasers[indices.front()].laser_pose.x,
+                              lasers[indices.front()].laser_pose.y);
+  Eigen::Vector2d lo = first, hi = first;
+  for_each_beam(lasers, indices, options, [&](const Beam& b) {
+    lo = lo.cwiseMin(b.from).cwiseMin(b.to);
+    hi = hi.cwiseMax(b.from).cwiseMax(b.to);
+  });
+  const Eigen::Vector2d size_m = (hi - lo).array() + 2.0 * options.margin_m;
+  const double width = std::ceil(size_m.x() / options.resolution) + 1.0;
+  const double height = std::ceil(size_m.y() / options.resolution) + 1.0;
+  if (width * height > static_cast<double>(options.max_cells)) {
+    throw Error("map from log: the map would be " + number(width) + " x " + number(height) +
+                " cells (" + number(size_m.x()) + " m x " + number(size_m.y()) + " m at " +
+                number(options.resolution) +
+                " m), more than max_cells = " + std::to_string(options.max_cells));
+  }
+  GridGeometry g;
+  g.resolution = options.resolution;
+  g.origin = lo.array() - options.margin_m;
+  g.width = static_cast<int>(width);
+  g.height = static_cast<int>(height);
+  return g;
+}
+
+/// Per cell, how many beams ended in it and how many crossed it (saturating at 65535).
+struct BeamCounts {
+  std::vector<std::uint16_t> hits, passes;
+
+  explicit BeamCounts(std::size_t cells) : hits(cells, 0), passes(cells, 0) {}
+  static void add(std::uint16_t& count) { count += count < 65535; }
+};
+
+/// Counts a beam: every cell it crosses before its end cell is passed (Amanatides-Woo
+/// traversal, forced towards the end cell so it always arrives there), the end cell is hit
+/// when the beam ends in a return and passed otherwise.
+void count_beam(const GridGeometry& g, const Beam& beam, BeamCounts& counts) {
+  const Eigen::Vector2d a = (beam.from - g.origin) / g.resolution;
+  const Eigen::Vector2d b = (beam.to - g.origin) / g.resolution;
+  int ix = static_cast<int>(std::floor(a.x())), iy = static_cast<int>(std::floor(a.y()));
+  const int ex = static_cast<int>(std::floor(b.x())), ey = static_cast<int>(std::floor(b.y()));
+  const double dx = b.x() - a.x(), dy = b.y() - a.y();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double tdx = dx != 0.0 ? 1.0 / std::abs(dx) : inf;
+  const double tdy = dy != 0.0 ? 1.0 / std::abs(dy) : inf;
+  double tx = dx != 0.0 ? (dx > 0.0 ? ix + 1 - a.x() : a.x() - ix) * tdx : inf;
+  double ty = dy != 0.0 ? (dy > 0.0 ? iy + 1 - a.y() : a.y() - iy) * tdy : inf;
+  while (ix != ex || iy != ey) {
+    BeamCounts::add(counts.passes[g.index(ix, iy)]);
+    if (iy == ey || (ix != ex && tx < ty)) {
+      tx += tdx;
+      ix += ex > ix ? 1 : -1;
+    } else {
+      ty += tdy;
+      iy += ey > iy ? 1 : -1;
+    }
+  }
+  BeamCounts::add((beam.hit ? counts.hits : counts.passes)[g.index(ex, ey)]);
+}
+
+CellState classify(std::uint16_t hits, std::uint16_t passes, const LogMapOptions& options) {
+  if (hits >= options.min_hits && hits >= options.occupied_ratio * (hits + passes)) {
+    return CellState::Occupied;
+  }
+  return passes >= options.min_passes ? CellState::Free : CellState::Unknown;
+}
+
+}  // namespace
+
+void validate(const LogMapOptions& options) {
+  require_positive(options.resolution, "resolution");
+  require_positive(options.max_range_m, "max_range_m");
+  require_non_negative(options.no_return_free_m, "no_return_free_m");
+  require_non_negative(options.margin_m, "margin_m");
+  if (options.min_hits < 1 || options.min_hits > 65535) {
+    throw Error("map from log: min_hits must be in [1, 65535], got " +
+                std::to_string(options.min_hits));
+  }
+  if (options.min_passes < 1 || options.min_passes > 65535) {
+    throw Error("map from log: min_passes must be in [1, 65535], got " +
+                std::to_string(options.min_passes));
+  }
+  if (!(options.occupied_ratio > 0.0 && options.occupied_ratio <= 1.0)) {
+    throw Error("map from log: occupied_ratio must be in (0, 1], got " +
+                number(options.occupied_ratio));
+  }
+  if (options.max_cells == 0) throw Error("map from log: max_cells must be > 0");
+}
+
+OccupancyMap map_from_log(const std::vector<LaserRecord>& lasers,
+                          const std::vector<std::size_t>& indices, const LogMapOptions& options) {
+  validate(options);
+  check_scans(lasers, indices);
+  const GridGeometry geometry = grid_for(lasers, indices, options);
+  BeamCounts counts(geometry.size());
+  for_each_beam(lasers, indices, options,
+                [&](const Beam& beam) { count_beam(geometry, beam, counts); });
+  OccupancyMap map(geometry, CellState::Unknown);
+  for (std::size_t c = 0; c < map.cells.size(); ++c) {
+    map.cells[c] = classify(counts.hits[c], counts.passes[c], options);
+  }
+  return map;
+}
+
+OccupancyMap map_from_log(const CarmenLog& log, const std::vector<std::size_t>& indices,
+                          const LogMapOptions& options) {
+  return map_from_log(log.lasers, indices, options);
+}
+
+CellCounts count_cells(const OccupancyMap& map) {
+  CellCounts counts;
+  for (const CellState s : map.cells) {
+    (s == CellState::Occupied ? counts.occupied
+     : s == CellState::Free   ? counts.free
+                              : counts.unknown)++;
+  }
+  return counts;
+}
+
+}  // namespace gridloc
