@@ -12,6 +12,7 @@ void add_simulate(CLI::App& app);
 void add_demo(CLI::App& app);
 void add_eval(CLI::App& app);
 void add_relations(CLI::App& app);
+void add_map_from_log(CLI::App& app);
 void add_heatmap(CLI::App& app);
 void add_hallway(CLI::App& app);
 void add_sectors(CLI::App& app);

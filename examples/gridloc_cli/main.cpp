@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   gridloc::cli::add_demo(app);
   gridloc::cli::add_eval(app);
   gridloc::cli::add_relations(app);
+  gridloc::cli::add_map_from_log(app);
   gridloc::cli::add_hallway(app);
   gridloc::cli::add_heatmap(app);
   gridloc::cli::add_sectors(app);
