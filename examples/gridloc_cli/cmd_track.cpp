@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/log_tracking.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/log_split.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -16,12 +17,14 @@ namespace {
 
 struct TrackArgs {
   std::string map, log, prior, odometry = "laser", odometry_noise;
-  bool global = false, json = false, truth = false;
+  bool global = false, json = false, truth = false, prior_from_log = false;
   int every = 1;
   std::size_t start = 0, count = 0;
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
   std::uint64_t seed = 1;
   double window_m = DriveWindowOptions{}.max_distance_m;
+  std::string part = "all";
+  LogSplitOptions split;
   GlobalTrialOptions trials;  ///< --trials N (0: track the log once)
   int trial_count = 0;
 };
@@ -65,10 +68,20 @@ nlohmann::json step_json(const TrackStep& step, bool truth) {
   return line;
 }
 
+/// The scans of --part: every scan, or the held-out part of alternate blocks (the scans
+/// `map-from-log --part map` with the same split options did not draw).
+std::vector<std::size_t> part_scans(const TrackArgs& args, const CarmenLog& log) {
+  if (args.part == "held-out") return split_log(log.lasers, args.split).held_out;
+  if (args.part != "all") throw Error("--part must be all or held-out, not '" + args.part + "'");
+  return all_scans(log.lasers).map;
+}
+
 /// The options the arguments give, checked against the log.
 LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
                                     const OccupancyMap& map) {
-  if (args.global == !args.prior.empty()) throw Error("give one of --prior x,y,theta or --global");
+  if (int(args.global) + int(!args.prior.empty()) + int(args.prior_from_log) != 1) {
+    throw Error("give one of --prior x,y,theta, --prior-from-log or --global");
+  }
   if (args.trial_count < 0) throw Error("--trials must be >= 0");
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
   LogTrackingOptions options;
@@ -90,7 +103,11 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   }
   const std::size_t end =
       args.count == 0 ? log.lasers.size() : std::min(log.lasers.size(), args.start + args.count);
-  for (std::size_t k = args.start; k < end; ++k) options.scans.push_back(k);
+  for (std::size_t k : part_scans(args, log)) {
+    if (k >= args.start && k < end) options.scans.push_back(k);
+  }
+  if (options.scans.empty())
+    throw Error("no scan of the " + args.part + " part in --start/--count");
   return options;
 }
 
@@ -207,6 +224,9 @@ void add_track(CLI::App& app) {
       ->required();
   cmd->add_option("--prior", args->prior, "the pose at the first scan: x,y,theta (m, m, rad)");
   cmd->add_flag("--global", args->global, "localize the first scans on the whole map");
+  cmd->add_flag("--prior-from-log", args->prior_from_log,
+                "the prior is the log's pose at the first scan (corrected logs: tracking from "
+                "a correct prior)");
   cmd->add_option("--prior-sigma-m", args->prior_sigma_m, "--prior: its standard deviation (m)")
       ->capture_default_str();
   cmd->add_option("--prior-sigma-deg", args->prior_sigma_deg, "--prior: in heading (degrees)")
@@ -215,6 +235,15 @@ void add_track(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--start", args->start, "the first scan (0-based index)")->capture_default_str();
   cmd->add_option("--count", args->count, "this many scans from --start (0: to the end)")
+      ->capture_default_str();
+  cmd->add_option("--part", args->part,
+                  "all | held-out: only the odd blocks of the split (odometry between them "
+                  "carried), the scans map-from-log --part map leaves out")
+      ->capture_default_str();
+  cmd->add_option("--block-s", args->split.block_s, "--part: block length (s) by time")
+      ->capture_default_str();
+  cmd->add_option("--block-scans", args->split.block_scans,
+                  "--part: block length (scans) when the timestamps are unusable")
       ->capture_default_str();
   cmd->add_option("--odometry", args->odometry,
                   "laser (the laser lines' pose fields) | odom (the ODOM lines)")

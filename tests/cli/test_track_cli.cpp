@@ -96,6 +96,31 @@ TEST_F(TrackCli, OdometryFromOdomLines) {
   EXPECT_LE(steps.back()["error_m"].get<double>(), 0.05);
 }
 
+TEST_F(TrackCli, TheHeldOutPartIsTheOddBlocksFromAPriorTakenFromTheLog) {
+  // Timestamps 0..12 s in blocks of 4 s: scans 4-7 and 12 are held out.
+  const std::vector<nlohmann::json> steps = track("--prior-from-log --part held-out --block-s 4");
+  ASSERT_EQ(steps.size(), 5u);
+  EXPECT_EQ(steps.front()["index"].get<int>(), 4);
+  EXPECT_EQ(steps.back()["index"].get<int>(), 12);
+  for (const nlohmann::json& step : steps) EXPECT_LE(step["error_m"].get<double>(), 0.10);
+}
+
+TEST_F(TrackCli, GlobalTrialsReportEachTrialAndASummary) {
+  const std::vector<nlohmann::json> lines = track("--global --trials 3 --drive-m 1");
+  ASSERT_EQ(lines.size(), 4u);
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(lines[t]["trial"].get<int>(), t);
+    // Each drive goes on for 1 m, or to the log's last scan.
+    const nlohmann::json& end = lines[t]["end"];
+    EXPECT_TRUE(end["travelled_m"].get<double>() >= 1.0 - 1e-9 || end["index"].get<int>() == 12)
+        << end.dump();
+    EXPECT_TRUE(lines[t]["standstill"].contains("right"));
+  }
+  const nlohmann::json& summary = lines.back()["summary"];
+  EXPECT_EQ(summary["trials"].get<int>(), 3);
+  EXPECT_GE(summary["drive_success_pct"].get<double>(), 0.0);
+}
+
 TEST_F(TrackCli, BadInputIsOneErrorLine) {
   const std::string base = "track --map " + quote(map) + " --log " + quote(log) + " ";
   expect_cli_error(run_cli(dir, base + "--prior 1,2,0 --global"), {"--prior", "--global"});
@@ -106,6 +131,8 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --start 99"), {"--start", "13 scans"});
   expect_cli_error(run_cli(dir, base + "--global --odometry-noise 0.02"), {"--odometry-noise"});
   expect_cli_error(run_cli(dir, base + "--prior 1,x,0"), {"--prior"});
+  expect_cli_error(run_cli(dir, base + "--prior-from-log --trials 2"), {"--trials", "--global"});
+  expect_cli_error(run_cli(dir, base + "--global --part odd"), {"--part", "odd"});
   expect_cli_error(run_cli(dir, "track --map " + quote(map) + " --global --log " +
                                     quote(dir.file("missing.log"))),
                    {"missing.log"});
