@@ -16,23 +16,32 @@ namespace correlation_detail {
 /// The neighbourhood of `p` whose poses are not distinct from it: within distinct_xy and
 /// distinct_theta, in lattice units (one definition for every strategy, so that they agree
 /// exactly on the second peak).
-Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
+double heading_turn(const Lattice& lattice) {
+  const double turn = 2.0 * std::numbers::pi;
+  const double covered = lattice.step_theta * (lattice.headings - 1);
+  return lattice.headings > 1 && covered >= turn - lattice.step_theta - 1e-9
+             ? turn / lattice.step_theta
+             : 0.0;
+}
+
+Exclusion neighbourhood(const LatticePose& p, double res, const Lattice& lattice,
                         const CorrelationOptions& options) {
   return {p, options.distinct_xy / res,
-          static_cast<int>(std::floor(options.distinct_theta / step_theta + 1e-9))};
+          static_cast<int>(std::floor(options.distinct_theta / lattice.step_theta + 1e-9)),
+          heading_turn(lattice)};
 }
 
 /// Distinct local maxima of the scored poses: best first (ties to the lowest index), each
 /// outside the neighbourhood of every one chosen before.
 std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
-                                        double step_theta, const CorrelationOptions& options,
+                                        const Lattice& lattice, const CorrelationOptions& options,
                                         std::size_t max_count) {
   std::stable_sort(scored.begin(), scored.end(),
                    [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
   std::vector<LatticePose> peaks;
   for (const auto& c : scored) {
     const bool distinct = std::none_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {
-      return neighbourhood(p, res, step_theta, options).contains(c.ix, c.iy, c.it);
+      return neighbourhood(p, res, lattice, options).contains(c.ix, c.iy, c.it);
     });
     if (distinct) peaks.push_back(c);
     if (peaks.size() == max_count) break;

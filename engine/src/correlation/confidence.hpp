@@ -10,13 +10,18 @@
 
 namespace gridloc::correlation_detail {
 
+/// Heading steps per full turn of `lattice` (2 pi / step) when it covers every heading (its
+/// first and last headings lie less than a step apart across +-pi), else 0: neighbourhoods
+/// then wrap around +-pi.
+double heading_turn(const Lattice& lattice);
+
 /// The neighbourhood of `p` whose poses are not distinct from it, in lattice units.
-Exclusion neighbourhood(const LatticePose& p, double res, double step_theta,
+Exclusion neighbourhood(const LatticePose& p, double res, const Lattice& lattice,
                         const CorrelationOptions& options);
 
 /// Distinct local maxima of the scored poses, best first, up to `max_count`.
 std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
-                                        double step_theta, const CorrelationOptions& options,
+                                        const Lattice& lattice, const CorrelationOptions& options,
                                         std::size_t max_count);
 
 /// Covariance of the pose around the lattice winner `best`, from the scores within k cells.

@@ -146,7 +146,7 @@ std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const Correlatio
   std::vector<LatticePose> seen = result.scored;
   while (peaks.size() < wanted) {
     bnb.exclude.push_back(
-        neighbourhood(peaks.back(), options.resolution, search.lattice.step_theta, options));
+        neighbourhood(peaks.back(), options.resolution, search.lattice, options));
     bnb.incumbent = best_outside(seen, bnb.exclude);
     SearchResult next;
     next.best = bnb.incumbent.value_or(LatticePose{});
@@ -165,12 +165,13 @@ std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const Correlatio
 
 /// Estimate::alternatives as lattice poses: up to options.hypotheses distinct ones, the
 /// winner first.
-std::vector<LatticePose> hypotheses(WindowSearch& search, const CorrelationOptions& options,
+std::vector<LatticePose> this_many_hypotheses(WindowSearch& search,
+                                              const CorrelationOptions& options,
                                     std::chrono::steady_clock::time_point start) {
   if (options.strategy == SearchStrategy::BranchAndBound) {
     return exact_hypotheses(search, options, start);
   }
-  return distinct_peaks(search.result.scored, options.resolution, search.lattice.step_theta,
+  return distinct_peaks(search.result.scored, options.resolution, search.lattice,
                         options, static_cast<std::size_t>(options.hypotheses));
 }
 
@@ -239,6 +240,14 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, CorrelationOptions 
 
 Estimate CorrelationEstimator::estimate(const Observation& observation,
                                         const SearchWindow& window) const {
+  return estimate(observation, window, options_.hypotheses);
+}
+
+Estimate CorrelationEstimator::estimate(const Observation& observation, const SearchWindow& window,
+                                        int hypotheses) const {
+  if (hypotheses < 1) throw Error("estimate: hypotheses must be at least 1");
+  CorrelationOptions peak_options = options_;
+  peak_options.hypotheses = hypotheses;
   const auto start = std::chrono::steady_clock::now();
   const Lattice lattice = this->lattice(observation, window);  // checks both first
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
@@ -261,7 +270,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
   const double mass =
       levels.front().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
-  const std::vector<LatticePose> peaks = hypotheses(search, options_, start);
+  const std::vector<LatticePose> peaks = this_many_hypotheses(search, peak_options, start);
   e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
   for (const auto& p : peaks) {
     e.alternatives.push_back(

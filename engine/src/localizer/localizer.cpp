@@ -1,4 +1,5 @@
-// The Localizer facade: odometry and sonar firings in, the current Estimate out.
+// The Localizer facade: odometry and sonar firings or laser scans in, the current Estimate
+// out, through a set of hypotheses that survive motion.
 #include "gridloc/engine/localizer/localizer.hpp"
 
 #include <algorithm>
@@ -40,7 +41,10 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           "must be at least 1");
   require(finite_at_least(options.max_range_slack_m, 0.0), "max_range_slack_m",
           options.max_range_slack_m, "must be finite and >= 0");
+  require(finite_at_least(options.reseed_after_m, 0.0), "reseed_after_m", options.reseed_after_m,
+          "must be finite and >= 0");
   validate(options.drive);
+  validate(options.hypothesis_set);
   return options;
 }
 
@@ -89,19 +93,17 @@ bool on_map(const OccupancyMap& map, const Pose2& pose) {
   return map.geometry.contains(cell.ix, cell.iy);
 }
 
-/// The state after a firing's estimate: a `localized` fix becomes the prior (the path is
-/// counted from it); too many answers in a row that are not drop the prior.
+/// The state after an observation's estimate: the set now refers to `taken_at`; too many
+/// `not localized` answers in a row drop it.
 void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_at,
                    int misses_before_global) {
   state.estimate = e;
-  if (e.verdict == Verdict::Localized) {
-    state.prior = e.pose;
-    state.prior_covariance = e.covariance;
-    state.prior_odometry = taken_at;
-    state.travelled_m = 0.0;
+  state.set_odometry = taken_at;
+  state.travelled_m = 0.0;
+  if (e.verdict != Verdict::NotLocalized) {
     state.misses = 0;
   } else if (++state.misses >= misses_before_global) {
-    state.prior.reset();
+    state.set = {};
     state.misses = 0;
   }
 }
@@ -141,9 +143,9 @@ void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) 
     throw Error("localizer: the prior covariance must be finite with a diagonal >= 0");
   }
   std::unique_lock lock(mutex_);
-  state_.prior = pose;
-  state_.prior_covariance = covariance;
-  state_.prior_odometry = state_.odometry.value_or(Pose2{});
+  state_.set = {};
+  state_.set.hypotheses.push_back({pose, covariance, 0.0, Estimate{}});
+  state_.set_odometry = state_.odometry.value_or(Pose2{});
   state_.travelled_m = 0.0;
   state_.misses = 0;
 }
@@ -198,13 +200,55 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
                          const Observation& observation) {
   const double travelled_before = next.travelled_m;
   // The search runs without the lock, so readers get the previous estimate meanwhile.
-  const Estimate e = estimator_.estimate(observation, window_now(next, taken_at, observation));
-  take_estimate(next, e, taken_at, options_.misses_before_global);
+  next.since_global_m += next.travelled_m;
+  const bool unsure = next.estimate && next.estimate->verdict != Verdict::Localized;
+  const bool reseed = unsure && next.since_global_m >= options_.reseed_after_m;
+  std::optional<Estimate> e;
+  if (!next.set.hypotheses.empty() && !reseed) e = follow(next, taken_at, observation);
+  if (!e) {
+    e = seed_globally(next, observation);
+    next.since_global_m = 0.0;
+  }
+  take_estimate(next, *e, taken_at, options_.misses_before_global);
   std::unique_lock lock(mutex_);
   // Odometry that arrived during the search is kept, with the path it added.
   next.travelled_m += state_.travelled_m - travelled_before;
   next.odometry = state_.odometry;
   state_ = std::move(next);
+}
+
+Estimate Localizer::seed_globally(LocalizerState& next, const Observation& observation) const {
+  const HypothesisSetOptions& set_options = options_.hypothesis_set;
+  const Estimate global = estimator_.estimate(observation, estimator_.global_window(observation),
+                                              set_options.max_hypotheses + 1);
+  next.set = {};
+  if (global.verdict == Verdict::NotLocalized) return global;
+  next.set = seed_hypotheses(global, set_options);
+  return set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
+}
+
+std::optional<Estimate> Localizer::follow(LocalizerState& next, const Pose2& taken_at,
+                                          const Observation& observation) const {
+  const Pose2 moved = relative_pose(next.set_odometry, taken_at);
+  const SearchWindow global = estimator_.global_window(observation);
+  std::vector<TrackedHypothesis> followed;
+  for (const TrackedHypothesis& hypothesis : next.set.hypotheses) {
+    const std::optional<SearchWindow> window =
+        window_around(hypothesis, moved, next.travelled_m, global);
+    if (!window) continue;
+    Estimate e = estimator_.estimate(observation, *window);
+    // A window that explains nothing does not move the hypothesis (its winner is noise).
+    const Pose2 pose = e.verdict == Verdict::NotLocalized ? window->center : e.pose;
+    const Eigen::Matrix3d covariance =
+        e.verdict == Verdict::NotLocalized ? hypothesis.covariance : e.covariance;
+    followed.push_back({pose, covariance, e.score, std::move(e)});
+  }
+  merge_and_prune(followed, options_.hypothesis_set);
+  if (followed.empty()) return std::nullopt;
+  // Only the tracked places are re-scored: whether the seeding search was crowded no longer
+  // tells about them.
+  next.set = {std::move(followed), next.set.elsewhere_score, false};
+  return set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
 }
 
 Estimate Localizer::estimate() const {
@@ -213,27 +257,25 @@ Estimate Localizer::estimate() const {
   return *state_.estimate;
 }
 
-/// The window around the prior carried to the odometry pose `taken_at`, grown by the
-/// odometry's error over the path since; the global window without a prior, when that grows
-/// past max_half_xy_m, or when the carried prior has left the map. Its heading step is the
-/// global window's (5 deg for sonar; for a scan, about a cell at its farthest return).
-SearchWindow Localizer::window_now(const LocalizerState& state, const Pose2& taken_at,
-                                   const Observation& observation) const {
-  const SearchWindow global = estimator_.global_window(observation);
-  if (!state.prior) return global;
-  const Pose2 moved = relative_pose(state.prior_odometry, taken_at);
-  const double sigma_xy =
-      std::sqrt(std::max(state.prior_covariance(0, 0), state.prior_covariance(1, 1)));
+/// The heading step is the global window's (5 deg for sonar; for a scan, about a cell at its
+/// farthest return).
+std::optional<SearchWindow> Localizer::window_around(const TrackedHypothesis& hypothesis,
+                                                     const Pose2& moved, double travelled_m,
+                                                     const SearchWindow& global) const {
+  const Eigen::Matrix3d& covariance = hypothesis.covariance;
+  const double sigma_xy = std::sqrt(std::max(covariance(0, 0), covariance(1, 1)));
   const double half_xy =
-      options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * state.travelled_m;
+      options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * travelled_m;
   SearchWindow window;
-  window.center = compose(*state.prior, moved);
-  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) return global;
+  window.center = compose(hypothesis.pose, moved);
+  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) {
+    return std::nullopt;
+  }
   window.step_xy = estimator_.options().resolution;
   window.step_theta = global.step_theta;
   window.half_xy = std::max(half_xy, options_.min_half_xy_m);
-  const double half_theta = options_.prior_sigmas * std::sqrt(state.prior_covariance(2, 2)) +
-                            options_.odometry_turn_error_per_m * state.travelled_m;
+  const double half_theta = options_.prior_sigmas * std::sqrt(covariance(2, 2)) +
+                            options_.odometry_turn_error_per_m * travelled_m;
   window.half_theta = std::clamp(half_theta, options_.min_half_theta, std::numbers::pi);
   return window;
 }

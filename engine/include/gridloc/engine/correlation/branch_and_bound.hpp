@@ -3,6 +3,7 @@
 /// of 2^h x 2^h translations, and for rigid scans intervals of 2^a headings, are bounded from
 /// above with max / min pooled global grids and pruned against the best pose found so far.
 /// Returns what search_exhaustive returns, bit for bit, while scoring far fewer poses.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -79,15 +80,29 @@ struct Exclusion {
   LatticePose center;
   double radius_cells = 0.0;
   int radius_headings = 0;
+  /// Heading steps per full turn (2 pi / step, not always whole) when the lattice covers
+  /// every heading, so that the zone wraps around +-pi; 0 when it does not.
+  double turn_headings = 0.0;
 
+  /// Heading steps from the centre's heading to `it`, the short way round when wrapping.
+  double heading_distance(int it) const {
+    const double d = std::abs(it - center.it);
+    return turn_headings > 0.0 ? std::min(d, std::abs(turn_headings - d)) : d;
+  }
   bool contains(int ix, int iy, int it) const {
-    return std::abs(it - center.it) <= radius_headings &&
+    return heading_distance(it) <= radius_headings + 1e-9 &&
            std::hypot(ix - center.ix, iy - center.iy) <= radius_cells;
   }
   /// True when every translation of [x0, x1] x [y0, y1] at every heading of [it0, it1] is
   /// excluded: the heading and disc tests are independent, so the interval's two ends and
   /// the rectangle's four corners (a disc holds a rectangle when it holds its corners) do.
+  /// When wrapping, an interval whose ends lie in the zone lies in it if it is no longer than
+  /// the zone and the zone is shorter than half a turn (it cannot go round the other way).
   bool contains_block(int it0, int it1, int x0, int y0, int x1, int y1) const {
+    if (turn_headings > 0.0 &&
+        (it1 - it0 > 2 * radius_headings || 4.0 * radius_headings >= turn_headings)) {
+      return false;
+    }
     return contains(x0, y0, it0) && contains(x0, y0, it1) && contains(x1, y0, it0) &&
            contains(x0, y1, it0) && contains(x1, y1, it0);
   }

@@ -103,6 +103,10 @@ class CorrelationEstimator final : public Estimator {
 
   /// window.step_xy must equal options().resolution (the translation lattice is the grid).
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
+  /// The same, reporting up to `hypotheses` distinct poses (>= 1) instead of
+  /// options().hypotheses: a global search that seeds a HypothesisSet asks for more.
+  Estimate estimate(const Observation& observation, const SearchWindow& window,
+                    int hypotheses) const;
   std::string name() const override { return "correlation"; }
 
   /// The window of a global localization (no prior): the whole map, every heading. The

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/localizer/hypothesis_set.hpp"
 #include "gridloc/sensors/drive_fusion.hpp"
 
 namespace gridloc {
@@ -29,9 +30,17 @@ struct LocalizerOptions {
   double min_half_xy_m = 0.3;    ///< the window's half side is at least this...
   double max_half_xy_m = 2.0;    ///< ...and at most this (beyond: localize globally)
   double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this
-  /// After this many firings in a row that were not `localized`, the prior is dropped and
-  /// the next firing searches the whole map (a wrong prior or a lost track).
+  /// After this many observations in a row that were `not localized`, the hypotheses are
+  /// dropped and the next observation searches the whole map (a wrong prior or a lost
+  /// track). `ambiguous` answers are no miss: the look-alikes are tracked until the drive
+  /// tells them apart.
   int misses_before_global = 3;
+  /// The look-alikes a global search leaves, tracked through motion.
+  HypothesisSetOptions hypothesis_set;
+  /// While the answer is not `localized`, search the whole map again once the odometry path
+  /// since the last global search reaches this (m): the drive behind the latest observation
+  /// has grown, and the truth may lie outside the tracked set (0: at every observation).
+  double reseed_after_m = 1.0;
   /// Driver values up to this far above a sonar's max range read as no echo (from_driver).
   double max_range_slack_m = 0.01;
 };
@@ -53,12 +62,13 @@ struct LocalizerState {
   std::optional<Pose2> odometry;      ///< the latest odometry pose
   std::vector<OdometryFiring> drive;  ///< sonar: firings within the drive window, oldest first
   std::vector<OdometryScan> scans;    ///< laser: scans within the drive window, oldest first
-  std::optional<Pose2> prior;         ///< the pose believed at `prior_odometry`, world frame
-  Eigen::Matrix3d prior_covariance = Eigen::Matrix3d::Zero();
-  Pose2 prior_odometry;              ///< the odometry pose the prior was given at
-  double travelled_m = 0.0;          ///< odometry path length since the prior
-  int misses = 0;                    ///< firings in a row that were not `localized`
-  std::optional<Estimate> estimate;  ///< the latest firing's estimate
+  /// The poses believed (world frame) at `set_odometry`; empty: localize globally next.
+  HypothesisSet set;
+  Pose2 set_odometry;                ///< the odometry pose the set's poses refer to
+  double travelled_m = 0.0;          ///< odometry path length since set_odometry
+  int misses = 0;                    ///< observations in a row that were `not localized`
+  double since_global_m = 0.0;       ///< odometry path length since the last global search
+  std::optional<Estimate> estimate;  ///< the latest observation's estimate
 };
 
 /// Thread safety: one writer (reset, set_prior, add_observation) and any number of readers
@@ -73,21 +83,25 @@ class Localizer {
   /// The same for a robot with a laser scanner (its scans go to add_observation(time, scan)).
   Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions options = {});
 
-  /// Forgets the drive, the prior and the estimate (not the latest odometry pose): the next
-  /// firing localizes globally.
+  /// Forgets the drive, the hypotheses and the estimate (not the latest odometry pose): the
+  /// next observation localizes globally.
   void reset();
   /// The robot is at `pose` (world frame) with `covariance` of (x, y, theta) now, at the
-  /// latest odometry pose. Throws for a non-finite pose or covariance, or a negative
-  /// variance.
+  /// latest odometry pose: the one hypothesis. Throws for a non-finite pose or covariance, or
+  /// a negative variance.
   void set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance);
   /// The robot's odometry pose now (any fixed odometry frame); firings are taken here. The
   /// path length since the prior grows the search window.
   void add_odometry(const Pose2& odometry);
   /// A firing of the ring at the latest odometry pose (the odometry origin when none was
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
-  /// with the drive and localizes. A `localized` answer becomes the prior of the next firing;
-  /// after LocalizerOptions::misses_before_global answers that are not, or when the carried
-  /// prior leaves the map, the search is global again.
+  /// with the drive and localizes: without hypotheses by a global search, which seeds them
+  /// (seed_hypotheses; none when it is `not localized`); with hypotheses by a windowed
+  /// search around each, carried by odometry (then merge_and_prune; the answer is
+  /// set_estimate's). After LocalizerOptions::misses_before_global `not localized` answers in
+  /// a row, when every hypothesis's window leaves the map or grows past max_half_xy_m, or
+  /// when the answer is not `localized` and reseed_after_m has been driven since the last
+  /// global search, the search is global again.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
@@ -107,8 +121,15 @@ class Localizer {
   /// Localizes `observation`, taken at odometry pose `taken_at`, into `next` (a copy of the
   /// state) and publishes it.
   void localize(LocalizerState next, const Pose2& taken_at, const Observation& observation);
-  SearchWindow window_now(const LocalizerState& state, const Pose2& taken_at,
-                          const Observation& observation) const;
+  /// A global search, seeding next.set.
+  Estimate seed_globally(LocalizerState& next, const Observation& observation) const;
+  /// Each hypothesis re-scored in its window; nullopt when no window was left to search.
+  std::optional<Estimate> follow(LocalizerState& next, const Pose2& taken_at,
+                                 const Observation& observation) const;
+  /// The window around `hypothesis` carried by `moved` (odometry since the set), grown by
+  /// the odometry's error over next.travelled_m; nullopt past max_half_xy_m or off the map.
+  std::optional<SearchWindow> window_around(const TrackedHypothesis& hypothesis, const Pose2& moved,
+                                            double travelled_m, const SearchWindow& global) const;
 
   LocalizerOptions options_;
   std::optional<LaserSensor> laser_;  ///< set for a laser Localizer

@@ -1,0 +1,62 @@
+#pragma once
+/// Hypotheses that survive motion (issue 13): the distinct poses a global search found
+/// scoring nearly as much as its winner, carried by odometry, re-scored on each observation
+/// in a small window each, merged when they meet and dropped when they fall far below the
+/// best. One left: the place is unique; several: look-alikes the drive has not told apart.
+#include <Eigen/Core>
+#include <vector>
+
+#include "gridloc/engine/estimate.hpp"
+
+namespace gridloc {
+
+struct HypothesisSetOptions {
+  /// The most hypotheses tracked (>= 1). A global search asks for one more distinct pose:
+  /// when that one still scores within drop_ratio of the winner, more places than the set
+  /// holds read the same (HypothesisSet::crowded).
+  int max_hypotheses = 4;
+  /// A hypothesis scoring less than this share of the best is dropped (in (0, 1]).
+  double drop_ratio = 0.8;
+  /// Hypotheses closer than these (m, rad) have met: the better one is kept.
+  double merge_xy = 0.3;
+  double merge_theta = 0.261799387799;  ///< 15 deg
+};
+
+/// Checks the options; throws gridloc::Error naming the field.
+void validate(const HypothesisSetOptions& options);
+
+/// One tracked pose: where it puts the robot (world frame) at the odometry pose of the
+/// latest observation, and that observation's windowed estimate around it.
+struct TrackedHypothesis {
+  Pose2 pose;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  double score = 0.0;  ///< the latest observation's score at `pose`
+  Estimate estimate;   ///< the search that placed it (its window's own verdict)
+};
+
+struct HypothesisSet {
+  std::vector<TrackedHypothesis> hypotheses;  ///< best first
+  /// A pose outside every hypothesis scored at least this on the seeding search (the next
+  /// distinct peak, exact under branch and bound); 0 when the search found no other.
+  double elsewhere_score = 0.0;
+  bool crowded = false;  ///< elsewhere_score was within drop_ratio of the best at seeding
+};
+
+/// The set a global estimate seeds: its alternatives (distinct poses, best first) scoring
+/// at least drop_ratio of the winner, up to max_hypotheses; the winner carries the estimate's
+/// covariance and pose after refinement, the others their lattice pose and the winner's
+/// covariance. `global` must have been asked for max_hypotheses + 1 alternatives.
+HypothesisSet seed_hypotheses(const Estimate& global, const HypothesisSetOptions& options);
+
+/// Sorts by score, merges hypotheses that have met (the better one stays), drops those
+/// below drop_ratio of the best and keeps at most max_hypotheses.
+void merge_and_prune(std::vector<TrackedHypothesis>& hypotheses,
+                     const HypothesisSetOptions& options);
+
+/// The estimate the set answers with: the best hypothesis's, its alternatives the set's
+/// poses and scores (best first), `ambiguous` (verdict Ambiguous) when a second hypothesis
+/// scores at least `ambiguity_ratio` of the best (else the best's own verdict).
+/// Throws gridloc::Error for an empty set.
+Estimate set_estimate(const HypothesisSet& set, double ambiguity_ratio);
+
+}  // namespace gridloc
