@@ -101,7 +101,7 @@ void for_each_beam(const std::vector<LaserRecord>& lasers, const std::vector<std
   }
 }
 
-/// The grid spanning every laser position and drawn beam end plus the margin; throws
+/// The grid spanning the first scan's laser position and every drawn beam plus the margin; throws
 /// gridloc::Error when it would hold more than options.max_cells cells.
 GridGeometry grid_for(const std::vector<LaserRecord>& lasers,
                       const std::vector<std::size_t>& indices, const LogMapOptions& options) {

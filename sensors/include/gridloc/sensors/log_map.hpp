@@ -41,11 +41,12 @@ struct LogMapOptions {
 /// Checks `options`; throws gridloc::Error naming the field.
 void validate(const LogMapOptions& options);
 
-/// The map drawn by the scans `indices` of `lasers` (see the file comment). It spans their
-/// laser positions and drawn beams plus options.margin_m, in the log's frame (yaw 0). Throws
-/// gridloc::Error for no index, an index out of range, a laser pose that is not finite, a scan
-/// that fails validate() (a scan without any return is accepted: it draws nothing by default),
-/// a map that would exceed options.max_cells (the message gives its size), or bad options.
+/// The map drawn by the scans `indices` of `lasers` (see the file comment). It spans the drawn
+/// beams (and the first scan's laser position) plus options.margin_m, in the log's frame
+/// (yaw 0). Throws gridloc::Error for no index, an index out of range, a laser pose that is not
+/// finite, a scan that fails validate() (a scan without any return is accepted: it draws
+/// nothing by default), a map that would exceed options.max_cells (the message gives its
+/// size), or bad options.
 OccupancyMap map_from_log(const std::vector<LaserRecord>& lasers,
                           const std::vector<std::size_t>& indices,
                           const LogMapOptions& options = {});
