@@ -83,9 +83,18 @@ EvidenceGrid make_thinned_evidence(const OccupancyMap& map) {
   return e;
 }
 
-EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model) {
+EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model,
+                              const LikelihoodFieldOptions& field) {
   const OccupancyMap level = resample(map, resolution);
-  return model == GlobalModel::Thinned ? make_thinned_evidence(level) : make_evidence(level);
+  switch (model) {
+    case GlobalModel::Thinned:
+      return make_thinned_evidence(level);
+    case GlobalModel::LikelihoodField:
+      return make_likelihood_field(level, field);
+    case GlobalModel::Raw:
+      break;
+  }
+  return make_evidence(level);
 }
 
 }  // namespace gridloc

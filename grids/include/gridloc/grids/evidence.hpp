@@ -1,12 +1,15 @@
 #pragma once
 /// Global evidence grids built from a map (seed 001 §2 and §5).
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/likelihood_field.hpp"
 
 namespace gridloc {
 
 /// How the global grid treats obstacles: `Raw` keeps every occupied cell at +1; `Thinned`
-/// keeps only the one-cell-thick contour facing free space (seed 001 §5).
-enum class GlobalModel { Raw, Thinned };
+/// keeps only the one-cell-thick contour facing free space (seed 001 §5); `LikelihoodField`
+/// scores each cell by its distance to the nearest occupied cell, with free-space evidence
+/// beyond a cutoff (make_likelihood_field, issue 13).
+enum class GlobalModel { Raw, Thinned, LikelihoodField };
 
 /// Builds the map directly at another resolution (seed 001 §2: never by averaging evidence):
 /// a cell is Occupied if any map cell centred in it is occupied, Free if all such cells are
@@ -21,7 +24,9 @@ EvidenceGrid make_evidence(const OccupancyMap& map);
 /// neighbours is Free; the interior of obstacles becomes unknown (0). Free cells stay -1.
 EvidenceGrid make_thinned_evidence(const OccupancyMap& map);
 
-/// The global grid of one search level: `map` resampled at `resolution`, then raw or thinned.
-EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model);
+/// The global grid of one search level: `map` resampled at `resolution`, then raw, thinned or
+/// its likelihood field (with `field`, which only that model reads) at that resolution.
+EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model,
+                              const LikelihoodFieldOptions& field = {});
 
 }  // namespace gridloc
