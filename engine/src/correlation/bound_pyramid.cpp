@@ -45,12 +45,11 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
   }
   for (float v : arc.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
   for (float v : global.grid.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
-  auto is_ternary = [](const EvidenceGrid& g) {
-    return std::all_of(g.cells.begin(), g.cells.end(),
-                       [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; });
-  };
-  if (is_ternary(arc) && is_ternary(global.grid)) {  // pooling keeps values: levels are too
-    auto to_int8 = [](const EvidenceGrid& g) { return to_int8_with_slack(g.cells); };
+  // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
+  const float scale = int8_scale_for(global.grid.cells), arc_scale = int8_scale_for(arc.cells);
+  if (scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale) {
+    p.int8_scale = scale;
+    auto to_int8 = [scale](const EvidenceGrid& g) { return to_int8_with_slack(g.cells, scale); };
     p.arc_max8.push_back(to_int8(arc));
     p.grid_min8.push_back(to_int8(global.grid));
     for (int h = 1; h <= depth; ++h) {

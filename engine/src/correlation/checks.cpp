@@ -33,6 +33,7 @@ void check(const CorrelationOptions& options) {
                 std::to_string(options.covariance_cells));
   }
   validate(options.scan);
+  options.field.validate();
   if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
                 std::to_string(options.budget_ms));

@@ -70,18 +70,31 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   if (rule == ArcRule::Neutral) {
     for (float& v : p.arc_view) v = std::max(v, 0.0f);
   }
-  auto ternary = [](float v) { return v == -1.0f || v == 0.0f || v == 1.0f; };
-  if (std::all_of(p.grid.cells.begin(), p.grid.cells.end(), ternary)) {
-    p.arc_view8 = to_int8_with_slack(p.arc_view);
-    p.grid8 = to_int8_with_slack(p.grid.cells);
+  // arc_view = max(grid, 0) takes its values from the grid: one scale serves both.
+  const float scale = int8_scale_for(p.grid.cells);
+  if (scale > 0.0f) {
+    p.int8_scale = scale;
+    p.arc_view8 = to_int8_with_slack(p.arc_view, scale);
+    p.grid8 = to_int8_with_slack(p.grid.cells, scale);
   }
   return p;
 }
 
-std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells) {
+float int8_scale_for(const std::vector<float>& cells) {
+  for (const float scale : {1.0f, static_cast<float>(kFieldLevels)}) {
+    const bool whole = std::all_of(cells.begin(), cells.end(), [scale](float v) {
+      const float q = std::round(v * scale);
+      return std::abs(q) <= 127.0f && q / scale == v;
+    });
+    if (whole) return scale;
+  }
+  return 0.0f;
+}
+
+std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells, float scale) {
   std::vector<std::int8_t> out(cells.size() + kGatherSlack, 0);
   std::transform(cells.begin(), cells.end(), out.begin(),
-                 [](float v) { return static_cast<std::int8_t>(v); });
+                 [scale](float v) { return static_cast<std::int8_t>(std::round(v * scale)); });
   return out;
 }
 

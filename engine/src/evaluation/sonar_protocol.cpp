@@ -263,7 +263,7 @@ std::string to_string(LocalModel m) {
   return m == LocalModel::Oriented ? "oriented" : "turned";
 }
 std::string to_string(GlobalModel m) {
-  return m == GlobalModel::Thinned ? "thinned" : "raw";
+  return m == GlobalModel::Thinned ? "thinned" : m == GlobalModel::Raw ? "raw" : "field";
 }
 
 EvalReport run_evaluation(const std::vector<EvalMap>& maps, const SonarRing& ring,

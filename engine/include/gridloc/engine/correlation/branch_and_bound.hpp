@@ -32,13 +32,18 @@ struct BoundPyramid {
   float arc_max_all = 0.0f;   ///< max of the arc view and min of the grid over the whole
   float grid_min_all = 0.0f;  ///< padded grid: the bound of a window wider than any level
   float abs_max = 0.0f;       ///< max |value| of the grid and arc view (rounding slack)
-  /// When every value of the grid is -1, 0 or 1 (evidence grids): levels 0..depth again as
-  /// int8 ([0] = the arc view and the grid themselves), which the bounds read: the same
-  /// values from 4x less memory, so the same sums with fewer cache misses, and from the
-  /// fixed-point kernel's integer lanes. Each ends in kGatherSlack bytes. Empty otherwise.
+  /// When every value of the grid is a whole multiple of 1 / s for the int8_scale s of
+  /// int8_scale_for (-1/0/1 evidence grids: s = 1; a likelihood field: kFieldLevels):
+  /// levels 0..depth again as int8 times s ([0] = the arc view and the grid themselves),
+  /// which the bounds read: the same values from 4x less memory, so the same sums with fewer
+  /// cache misses, and from the fixed-point kernel's integer lanes. Each ends in
+  /// kGatherSlack bytes. Empty otherwise.
   std::vector<std::vector<std::int8_t>> arc_max8;
   std::vector<std::vector<std::int8_t>> grid_min8;
-  bool ternary() const { return !arc_max8.empty(); }
+  float int8_scale = 1.0f;
+  bool has_int8() const { return !arc_max8.empty(); }
+  /// int8 levels of a grid whose values are all -1, 0 or 1.
+  bool ternary() const { return has_int8() && int8_scale == 1.0f; }
 
   /// The top level h (0 when only level 0 exists).
   int depth() const { return static_cast<int>(arc_max.size()) - 1; }
@@ -65,9 +70,11 @@ inline double block_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& lo
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(iy + pyramid.pad) * arc_grid.width() + (ix + pyramid.pad);
   const auto level = static_cast<std::size_t>(h);
-  if (pyramid.ternary()) {
+  // score() reads int8 copies scaled by 1 / s only for fixed-point local grids: so here.
+  if (pyramid.has_int8() && (pyramid.int8_scale == 1.0f || local.fixed_shift >= 0)) {
     return correlate(pyramid.arc_max8[level].data() + origin,
-                     pyramid.grid_min8[level].data() + origin, local);
+                     pyramid.grid_min8[level].data() + origin, local) /
+           static_cast<double>(pyramid.int8_scale);
   }
   return correlate(arc_grid.cells.data() + origin, pyramid.grid_min[level].cells.data() + origin,
                    local);

@@ -31,8 +31,10 @@ struct VerdictOptions {
 };
 
 struct CorrelationOptions {
-  LocalModel local = LocalModel::Oriented;    ///< oriented (seed 001 §3) or turned (baseline)
-  GlobalModel global = GlobalModel::Thinned;  ///< thinned (seed 001 §5) or raw (baseline)
+  LocalModel local = LocalModel::Oriented;  ///< oriented (seed 001 §3) or turned (baseline)
+  /// thinned (seed 001 §5), raw (baseline) or the likelihood field (issue 13, see `field`)
+  GlobalModel global = GlobalModel::Thinned;
+  LikelihoodFieldOptions field;  ///< the likelihood field's parameters (checked whatever `global`)
   SearchStrategy strategy = SearchStrategy::BranchAndBound;  ///< the fastest exact one
   ArcRule arc_rule = ArcRule::Neutral;  ///< how arc cells score on free space (see ArcRule)
   SonarModelOptions sonar;              ///< sonar local grid model (arc depth)

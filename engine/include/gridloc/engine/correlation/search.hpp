@@ -10,6 +10,7 @@
 
 #include "gridloc/engine/correlation/fixed_point_kernel.hpp"
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/likelihood_field.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 
@@ -29,17 +30,28 @@ enum class ArcRule { Neutral, Signed };
 struct PaddedGrid {
   EvidenceGrid grid;  ///< the padded grid; map cell (ix, iy) is grid cell (ix + pad, iy + pad)
   std::vector<float> arc_view;
-  /// int8 copies of arc_view and grid (plus kGatherSlack readable bytes) when every value of
-  /// both is -1, 0 or 1; empty otherwise. score() reads them with the fixed-point kernel.
+  /// int8 copies of arc_view and grid times int8_scale (plus kGatherSlack readable bytes)
+  /// when every value of both is a whole multiple of 1 / int8_scale (int8_scale_for); empty
+  /// otherwise. score() reads them with the fixed-point kernel.
   std::vector<std::int8_t> arc_view8, grid8;
+  /// 1 for -1/0/1 evidence grids, kFieldLevels for a likelihood field (see int8_scale_for).
+  float int8_scale = 1.0f;
   int pad = 0;
   int width = 0;   ///< the unpadded map's width, cells
   int height = 0;  ///< the unpadded map's height, cells
-  bool ternary() const { return !grid8.empty(); }
+  bool has_int8() const { return !grid8.empty(); }
+  /// int8 copies of a grid whose values are all -1, 0 or 1.
+  bool ternary() const { return has_int8() && int8_scale == 1.0f; }
 };
 
-/// The cells as int8 (values -1, 0, 1 stay exact), followed by kGatherSlack zero bytes.
-std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells);
+/// The scale s that makes every value v of `cells` a whole number v * s in [-127, 127] that
+/// gives v back exactly as float(v * s) / s: 1 (values -1, 0, 1) or kFieldLevels (a
+/// likelihood field's levels); 0 when neither does.
+float int8_scale_for(const std::vector<float>& cells);
+
+/// The cells times `scale` as int8 (exact for the values int8_scale_for accepts with that
+/// scale), followed by kGatherSlack zero bytes.
+std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells, float scale = 1.0f);
 
 /// Throws gridloc::Error when the padded grid would have 2^31 cells or more (offsets are
 /// int32).
@@ -118,12 +130,14 @@ inline double correlate(const std::int8_t* arc, const std::int8_t* all,
 /// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
 /// and the local grid's extent must not exceed the padding. Equal to score_reference exactly
 /// when both sum in the same order (place() keeps the local grid's order), and on the
-/// fixed-point path whatever the order.
+/// fixed-point path whatever the order. On a likelihood field's int8 copies the exact
+/// integer sum is divided by int8_scale (one rounding, monotone, as the bounds do).
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
-  if (global.ternary() && local.fixed_shift >= 0) {
-    return correlate(global.arc_view8.data() + origin, global.grid8.data() + origin, local);
+  if (global.has_int8() && local.fixed_shift >= 0) {
+    return correlate(global.arc_view8.data() + origin, global.grid8.data() + origin, local) /
+           static_cast<double>(global.int8_scale);
   }
   return correlate(global.arc_view.data() + origin, global.grid.cells.data() + origin, local);
 }
