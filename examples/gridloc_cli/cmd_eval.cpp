@@ -127,6 +127,7 @@ EvalOptions eval_options(const EvalArgs& args) {
   options.trials = args.trials;
   options.seed = args.seed;
   args.search.apply(options.search);
+  args.field.apply(options.search);
   options.search.resolution = options.window.step_xy = args.step_xy;
   options.noise = parse_noise(args.noise);
   options.noisy.enabled = args.noisy;
@@ -139,6 +140,11 @@ EvalOptions eval_options(const EvalArgs& args) {
           {LocalModel::Oriented, GlobalModel::Thinned, parse_estimator_kind(name)});
     }
     if (options.configurations.empty()) throw Error("--estimators names no estimator");
+  }
+  if (!args.global_model.empty()) {  // the oriented model (or each estimator) on that grid
+    const GlobalModel global = parse_global(args.global_model);
+    if (args.estimators.empty()) options.configurations = {{LocalModel::Oriented, global}};
+    for (auto& c : options.configurations) c.global = global;
   }
   if (args.echo_filter) options.echo_filter = EchoFilterOptions{};
   return options;
@@ -196,6 +202,10 @@ void add_eval(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "seed of poses, priors and noise")->capture_default_str();
   cmd->add_option("--noise", args->noise, "realistic | none")->capture_default_str();
   args->search.add_to(cmd);
+  cmd->add_option("--global-model,--global-grid", args->global_model,
+                  "run only the oriented local grid (or each of --estimators) on this global "
+                  "grid: thinned | raw | field (likelihood field, see --field-sigma)");
+  args->field.add_to(cmd);
   cmd->add_option("--step-xy", args->step_xy,
                   "the correlation search's grid cell and translation step (m; seed 001: 0.1)")
       ->capture_default_str();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gridloc/engine/evaluation/sonar_protocol.hpp"
+#include "localization_args.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -16,6 +17,8 @@ struct EvalArgs {
   bool maps_given = false;  ///< --maps was on the command line
   double step_xy = 0.1;     ///< the correlation's grid cell = translation step (m)
   SearchArgs search;
+  FieldArgs field;
+  std::string global_model;  ///< --global-model: only the oriented model on this grid
   OctomapArgs octomap;
   int trials = 100;
   std::uint64_t seed = 1;

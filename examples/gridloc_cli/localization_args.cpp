@@ -8,6 +8,46 @@
 #include "gridloc/sensors/readings_io.hpp"
 
 namespace gridloc::cli {
+namespace {
+
+/// Throws gridloc::Error naming `flag` unless `options` (one field set) are valid.
+void check_field(const char* flag, const LikelihoodFieldOptions& options) {
+  try {
+    options.validate();
+  } catch (const Error& e) {
+    throw Error(std::string(flag) + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+void FieldArgs::add_to(CLI::App* cmd) {
+  cmd->add_option("--field-sigma", field.sigma_m,
+                  "--global-grid field: spread of the field around walls (m), exp(-d^2 / 2 "
+                  "sigma^2)")
+      ->capture_default_str();
+  cmd->add_option("--field-cutoff", field.cutoff_m,
+                  "--global-grid field: the field reaches this far from a wall (m); free cells "
+                  "beyond score --field-free")
+      ->capture_default_str();
+  cmd->add_option("--field-free", field.free_value,
+                  "--global-grid field: value of free cells beyond the cutoff, in [-1, 0] "
+                  "(free-space evidence; 0 = none)")
+      ->capture_default_str();
+}
+
+void FieldArgs::apply(CorrelationOptions& options) const {
+  LikelihoodFieldOptions one;
+  one.sigma_m = field.sigma_m;
+  check_field("--field-sigma", one);
+  one = {};
+  one.cutoff_m = field.cutoff_m;
+  check_field("--field-cutoff", one);
+  one = {};
+  one.free_value = field.free_value;
+  check_field("--field-free", one);
+  options.field = field;
+}
 
 void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
   if (ring.empty()) ring = data_dir() + "/sensors/wheelchair_14.yaml";
@@ -35,7 +75,10 @@ void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
       ->capture_default_str()
       ->each([this](const std::string&) { step_theta_given = true; });
   cmd->add_option("--local", local, "local grid: oriented | turned")->capture_default_str();
-  cmd->add_option("--global-grid", global, "global grid: thinned | raw")->capture_default_str();
+  cmd->add_option("--global-grid,--global-model", global,
+                  "global grid: thinned | raw | field (likelihood field, see --field-sigma)")
+      ->capture_default_str();
+  field.add_to(cmd);
   cmd->add_option("--levels", levels, "multiresolution levels")->capture_default_str();
   search.add_to(cmd);
 }
@@ -65,6 +108,7 @@ Localization prepare_localization(const LocalizationArgs& args) {
   options.local = parse_local(args.local);
   options.global = parse_global(args.global);
   args.search.apply(options);
+  args.field.apply(options);
   options.resolution = localization.window.step_xy;
   options.levels = args.levels;
   // A scan needs no ring: the padding covers its max range instead.

@@ -10,11 +10,24 @@
 
 namespace gridloc::cli {
 
+/// The likelihood field's parameters on the command line (--global-grid field): --field-sigma,
+/// --field-cutoff and --field-free, shared by `localize`, `heatmap` and `eval`.
+struct FieldArgs {
+  LikelihoodFieldOptions field;
+
+  /// Registers --field-sigma, --field-cutoff and --field-free.
+  void add_to(CLI::App* cmd);
+  /// Checks them (checked whatever the model: a bad number is a mistake even where unused)
+  /// into options.field; throws gridloc::Error naming the option.
+  void apply(CorrelationOptions& options) const;
+};
+
 struct LocalizationArgs {
   std::string map, ring, readings, scan, prior;
   double max_range = 8.0;
   std::string local = "oriented", global = "thinned";
   SearchArgs search;
+  FieldArgs field;
   OctomapArgs octomap;
   SearchWindow window;
   int levels = 3;
@@ -25,8 +38,9 @@ struct LocalizationArgs {
   bool step_xy_given = false, step_theta_given = false;
 
   /// Registers --map, the OctoMap band, --ring, --readings, --scan, --max-range, --prior,
-  /// --global (with `global_help`), the window, --local, --global-grid, --levels and the
-  /// search options; the ring defaults to the bundled wheelchair ring.
+  /// --global (with `global_help`), the window, --local, --global-grid (alias
+  /// --global-model), the field's options, --levels and the search options; the ring
+  /// defaults to the bundled wheelchair ring.
   void add_to(CLI::App* cmd, const std::string& global_help);
 };
 

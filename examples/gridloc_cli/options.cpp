@@ -64,7 +64,8 @@ OdometryNoise parse_odometry_noise(const std::string& text) {
 GlobalModel parse_global(const std::string& text) {
   if (text == "thinned") return GlobalModel::Thinned;
   if (text == "raw") return GlobalModel::Raw;
-  throw Error("--global-grid must be thinned or raw, not '" + text + "'");
+  if (text == "field") return GlobalModel::LikelihoodField;
+  throw Error("--global-grid must be thinned, raw or field, not '" + text + "'");
 }
 
 SearchStrategy parse_strategy(const std::string& text) {
