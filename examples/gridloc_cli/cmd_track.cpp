@@ -108,6 +108,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   }
   if (options.scans.empty())
     throw Error("no scan of the " + args.part + " part in --start/--count");
+  if (args.prior_from_log) options.prior = log.lasers[options.scans.front()].robot_pose;
   return options;
 }
 

@@ -105,6 +105,17 @@ TEST_F(TrackCli, TheHeldOutPartIsTheOddBlocksFromAPriorTakenFromTheLog) {
   for (const nlohmann::json& step : steps) EXPECT_LE(step["error_m"].get<double>(), 0.10);
 }
 
+TEST_F(TrackCli, APriorFromTheLogPlacesAScanOneScanCannotPlace) {
+  // Scan 8 stands at (10.5, 2.5) facing the north door: alone, it is ambiguous.
+  const std::vector<nlohmann::json> global = track("--global --start 8 --count 1");
+  ASSERT_EQ(global.size(), 1u);
+  EXPECT_EQ(global[0]["verdict"], "ambiguous");
+  const std::vector<nlohmann::json> tracked = track("--prior-from-log --start 8 --count 1");
+  ASSERT_EQ(tracked.size(), 1u);
+  EXPECT_EQ(tracked[0]["verdict"], "localized");
+  EXPECT_LE(tracked[0]["error_m"].get<double>(), 0.10);
+}
+
 TEST_F(TrackCli, GlobalTrialsReportEachTrialAndASummary) {
   const std::vector<nlohmann::json> lines = track("--global --trials 3 --drive-m 1");
   ASSERT_EQ(lines.size(), 4u);

@@ -199,17 +199,21 @@ void Localizer::add_observation(double time_s, const RangeScan& scan) {
 void Localizer::localize(LocalizerState next, const Pose2& taken_at,
                          const Observation& observation) {
   const double travelled_before = next.travelled_m;
-  // The search runs without the lock, so readers get the previous estimate meanwhile.
+  // The searches run without the lock, so readers get the previous estimate meanwhile.
   next.since_global_m += next.travelled_m;
-  const bool unsure = next.estimate && next.estimate->verdict != Verdict::Localized;
-  const bool reseed = unsure && next.since_global_m >= options_.reseed_after_m;
-  std::optional<Estimate> e;
-  if (!next.set.hypotheses.empty() && !reseed) e = follow(next, taken_at, observation);
-  if (!e) {
-    e = seed_globally(next, observation);
+  const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
+  std::vector<TrackedHypothesis> candidates = follow(next, taken_at, observation);
+  std::optional<Estimate> global;
+  if (candidates.empty() || (ambiguous && next.since_global_m >= options_.reseed_after_m)) {
+    global = search_globally(observation, candidates);
     next.since_global_m = 0.0;
   }
-  take_estimate(next, *e, taken_at, options_.misses_before_global);
+  merge_and_prune(candidates, options_.hypothesis_set);
+  next.set = {std::move(candidates)};
+  const Estimate e = next.set.hypotheses.empty()
+                         ? *global  // the global search was run and is not localized
+                         : set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
+  take_estimate(next, e, taken_at, options_.misses_before_global);
   std::unique_lock lock(mutex_);
   // Odometry that arrived during the search is kept, with the path it added.
   next.travelled_m += state_.travelled_m - travelled_before;
@@ -217,18 +221,20 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   state_ = std::move(next);
 }
 
-Estimate Localizer::seed_globally(LocalizerState& next, const Observation& observation) const {
+Estimate Localizer::search_globally(const Observation& observation,
+                                    std::vector<TrackedHypothesis>& candidates) const {
   const HypothesisSetOptions& set_options = options_.hypothesis_set;
   const Estimate global = estimator_.estimate(observation, estimator_.global_window(observation),
                                               set_options.max_hypotheses + 1);
-  next.set = {};
   if (global.verdict == Verdict::NotLocalized) return global;
-  next.set = seed_hypotheses(global, set_options);
-  return set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
+  for (TrackedHypothesis& seed : seed_hypotheses(global, set_options).hypotheses) {
+    candidates.push_back(std::move(seed));
+  }
+  return global;
 }
 
-std::optional<Estimate> Localizer::follow(LocalizerState& next, const Pose2& taken_at,
-                                          const Observation& observation) const {
+std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, const Pose2& taken_at,
+                                                 const Observation& observation) const {
   const Pose2 moved = relative_pose(next.set_odometry, taken_at);
   const SearchWindow global = estimator_.global_window(observation);
   std::vector<TrackedHypothesis> followed;
@@ -238,17 +244,12 @@ std::optional<Estimate> Localizer::follow(LocalizerState& next, const Pose2& tak
     if (!window) continue;
     Estimate e = estimator_.estimate(observation, *window);
     // A window that explains nothing does not move the hypothesis (its winner is noise).
-    const Pose2 pose = e.verdict == Verdict::NotLocalized ? window->center : e.pose;
-    const Eigen::Matrix3d covariance =
-        e.verdict == Verdict::NotLocalized ? hypothesis.covariance : e.covariance;
+    const bool lost = e.verdict == Verdict::NotLocalized;
+    const Pose2 pose = lost ? window->center : e.pose;
+    const Eigen::Matrix3d covariance = lost ? hypothesis.covariance : e.covariance;
     followed.push_back({pose, covariance, e.score, std::move(e)});
   }
-  merge_and_prune(followed, options_.hypothesis_set);
-  if (followed.empty()) return std::nullopt;
-  // Only the tracked places are re-scored: whether the seeding search was crowded no longer
-  // tells about them.
-  next.set = {std::move(followed), next.set.elsewhere_score, false};
-  return set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
+  return followed;
 }
 
 Estimate Localizer::estimate() const {

@@ -37,9 +37,10 @@ struct LocalizerOptions {
   int misses_before_global = 3;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
-  /// While the answer is not `localized`, search the whole map again once the odometry path
-  /// since the last global search reaches this (m): the drive behind the latest observation
-  /// has grown, and the truth may lie outside the tracked set (0: at every observation).
+  /// While the answer is `ambiguous`, search the whole map again once the odometry path since
+  /// the last global search reaches this (m): the drive behind the latest observation has
+  /// grown, and the truth may lie outside the tracked set; the tracked hypotheses compete
+  /// with the new seeds (0: at every observation).
   double reseed_after_m = 1.0;
   /// Driver values up to this far above a sonar's max range read as no echo (from_driver).
   double max_range_slack_m = 0.01;
@@ -95,13 +96,13 @@ class Localizer {
   void add_odometry(const Pose2& odometry);
   /// A firing of the ring at the latest odometry pose (the odometry origin when none was
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
-  /// with the drive and localizes: without hypotheses by a global search, which seeds them
-  /// (seed_hypotheses; none when it is `not localized`); with hypotheses by a windowed
-  /// search around each, carried by odometry (then merge_and_prune; the answer is
-  /// set_estimate's). After LocalizerOptions::misses_before_global `not localized` answers in
-  /// a row, when every hypothesis's window leaves the map or grows past max_half_xy_m, or
-  /// when the answer is not `localized` and reseed_after_m has been driven since the last
-  /// global search, the search is global again.
+  /// with the drive and localizes: each hypothesis is re-scored by a windowed search around
+  /// it, carried by odometry; without hypotheses (at first, after
+  /// LocalizerOptions::misses_before_global `not localized` answers in a row, or when every
+  /// window left the map or grew past max_half_xy_m), and while the answer is `ambiguous`
+  /// once reseed_after_m has been driven since the last global search, a global search adds
+  /// its seeds (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the
+  /// answer is set_estimate's.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
@@ -121,11 +122,14 @@ class Localizer {
   /// Localizes `observation`, taken at odometry pose `taken_at`, into `next` (a copy of the
   /// state) and publishes it.
   void localize(LocalizerState next, const Pose2& taken_at, const Observation& observation);
-  /// A global search, seeding next.set.
-  Estimate seed_globally(LocalizerState& next, const Observation& observation) const;
-  /// Each hypothesis re-scored in its window; nullopt when no window was left to search.
-  std::optional<Estimate> follow(LocalizerState& next, const Pose2& taken_at,
-                                 const Observation& observation) const;
+  /// A global search asking for the set's size plus one distinct poses; unless it is `not
+  /// localized`, its seeds (seed_hypotheses) join `candidates`.
+  Estimate search_globally(const Observation& observation,
+                           std::vector<TrackedHypothesis>& candidates) const;
+  /// Each hypothesis of next.set re-scored in its window (not pruned); those whose window
+  /// leaves the map or grows past max_half_xy_m are left out.
+  std::vector<TrackedHypothesis> follow(const LocalizerState& next, const Pose2& taken_at,
+                                        const Observation& observation) const;
   /// The window around `hypothesis` carried by `moved` (odometry since the set), grown by
   /// the odometry's error over next.travelled_m; nullopt past max_half_xy_m or off the map.
   std::optional<SearchWindow> window_around(const TrackedHypothesis& hypothesis, const Pose2& moved,
