@@ -23,6 +23,7 @@ struct TrackArgs {
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
   std::uint64_t seed = 1;
   double window_m = DriveWindowOptions{}.max_distance_m;
+  double drop_ratio = HypothesisSetOptions{}.drop_ratio;
   std::string part = "all";
   LogSplitOptions split;
   GlobalTrialOptions trials;  ///< --trials N (0: track the log once)
@@ -88,6 +89,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.correlation.resolution =
       args.resolution > 0.0 ? args.resolution : map.geometry.resolution;
   options.localizer.drive.max_distance_m = args.window_m;
+  options.localizer.hypothesis_set.drop_ratio = args.drop_ratio;
   options.laser.max_range = args.max_range;
   options.odometry = parse_odometry_source(args.odometry);
   if (!args.odometry_noise.empty())
@@ -266,6 +268,10 @@ void add_track(CLI::App& app) {
                   "driving on until --drive-m; prints each trial and a summary")
       ->capture_default_str();
   cmd->add_option("--drive-m", args->trials.drive_m, "--trials: the drive's length (m)")
+      ->capture_default_str();
+  cmd->add_option("--drop-ratio", args->drop_ratio,
+                  "hypotheses scoring less than this share of the best are dropped; while two "
+                  "survive the answer is ambiguous")
       ->capture_default_str();
   cmd->add_flag("--truth-from-log", args->truth,
                 "the log's poses are the truth (SLAM-corrected logs): add error_m, error_deg");

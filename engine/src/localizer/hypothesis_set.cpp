@@ -73,15 +73,13 @@ void merge_and_prune(std::vector<TrackedHypothesis>& hypotheses,
   hypotheses = std::move(kept);
 }
 
-Estimate set_estimate(const HypothesisSet& set, double ambiguity_ratio) {
+Estimate set_estimate(const HypothesisSet& set) {
   if (set.hypotheses.empty()) throw Error("hypothesis set: no hypothesis to answer with");
   const TrackedHypothesis& best = set.hypotheses.front();
   Estimate e = best.estimate;
   e.alternatives.clear();
   for (const TrackedHypothesis& h : set.hypotheses) e.alternatives.push_back({h.pose, h.score});
-  const bool look_alike =
-      set.hypotheses.size() > 1 && set.hypotheses[1].score >= ambiguity_ratio * best.score;
-  if (look_alike) {
+  if (set.hypotheses.size() > 1) {
     e.ambiguous = true;
     e.verdict = Verdict::Ambiguous;
   }

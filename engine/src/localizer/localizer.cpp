@@ -93,19 +93,13 @@ bool on_map(const OccupancyMap& map, const Pose2& pose) {
   return map.geometry.contains(cell.ix, cell.iy);
 }
 
-/// The state after an observation's estimate: the set now refers to `taken_at`; too many
-/// `not localized` answers in a row drop it.
-void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_at,
-                   int misses_before_global) {
+/// The state after an observation's estimate: the set now refers to `taken_at`, and the
+/// `not localized` answers in a row are counted.
+void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_at) {
   state.estimate = e;
   state.set_odometry = taken_at;
   state.travelled_m = 0.0;
-  if (e.verdict != Verdict::NotLocalized) {
-    state.misses = 0;
-  } else if (++state.misses >= misses_before_global) {
-    state.set = {};
-    state.misses = 0;
-  }
+  state.misses = e.verdict == Verdict::NotLocalized ? state.misses + 1 : 0;
 }
 
 }  // namespace
@@ -202,18 +196,20 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   // The searches run without the lock, so readers get the previous estimate meanwhile.
   next.since_global_m += next.travelled_m;
   const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
+  const bool lost = next.misses >= options_.misses_before_global;
   std::vector<TrackedHypothesis> candidates = follow(next, taken_at, observation);
   std::optional<Estimate> global;
-  if (candidates.empty() || (ambiguous && next.since_global_m >= options_.reseed_after_m)) {
+  if (candidates.empty() || lost || (ambiguous && next.since_global_m >= options_.reseed_after_m)) {
     global = search_globally(observation, candidates);
     next.since_global_m = 0.0;
+    next.misses = 0;
   }
   merge_and_prune(candidates, options_.hypothesis_set);
   next.set = {std::move(candidates)};
   const Estimate e = next.set.hypotheses.empty()
                          ? *global  // the global search was run and is not localized
-                         : set_estimate(next.set, options_.correlation.verdict.ambiguity_ratio);
-  take_estimate(next, e, taken_at, options_.misses_before_global);
+                         : set_estimate(next.set);
+  take_estimate(next, e, taken_at);
   std::unique_lock lock(mutex_);
   // Odometry that arrived during the search is kept, with the path it added.
   next.travelled_m += state_.travelled_m - travelled_before;

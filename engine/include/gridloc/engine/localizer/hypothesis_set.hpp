@@ -15,8 +15,11 @@ struct HypothesisSetOptions {
   /// when that one still scores within drop_ratio of the winner, more places than the set
   /// holds read the same (HypothesisSet::crowded).
   int max_hypotheses = 4;
-  /// A hypothesis scoring less than this share of the best is dropped (in (0, 1]).
-  double drop_ratio = 0.8;
+  /// A hypothesis scoring less than this share of the best is dropped (in (0, 1]); while
+  /// two survive, the answer is `ambiguous`. 0.97: seed 001's ambiguity ratio
+  /// (VerdictOptions), calibrated on sonar; real laser logs favour 0.9 (gridloc track
+  /// --drop-ratio, README).
+  double drop_ratio = 0.97;
   /// Hypotheses closer than these (m, rad) have met: the better one is kept.
   double merge_xy = 0.3;
   double merge_theta = 0.261799387799;  ///< 15 deg
@@ -54,9 +57,9 @@ void merge_and_prune(std::vector<TrackedHypothesis>& hypotheses,
                      const HypothesisSetOptions& options);
 
 /// The estimate the set answers with: the best hypothesis's, its alternatives the set's
-/// poses and scores (best first), `ambiguous` (verdict Ambiguous) when a second hypothesis
-/// scores at least `ambiguity_ratio` of the best (else the best's own verdict).
+/// poses and scores (best first); `ambiguous` (verdict Ambiguous) while more than one
+/// hypothesis survives (scores within drop_ratio of the best), else the best's own verdict.
 /// Throws gridloc::Error for an empty set.
-Estimate set_estimate(const HypothesisSet& set, double ambiguity_ratio);
+Estimate set_estimate(const HypothesisSet& set);
 
 }  // namespace gridloc

@@ -30,11 +30,11 @@ struct LocalizerOptions {
   double min_half_xy_m = 0.3;    ///< the window's half side is at least this...
   double max_half_xy_m = 2.0;    ///< ...and at most this (beyond: localize globally)
   double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this
-  /// After this many observations in a row that were `not localized`, the hypotheses are
-  /// dropped and the next observation searches the whole map (a wrong prior or a lost
-  /// track). `ambiguous` answers are no miss: the look-alikes are tracked until the drive
-  /// tells them apart.
-  int misses_before_global = 3;
+  /// After this many observations in a row that were `not localized`, the next one also
+  /// searches the whole map, its seeds competing with the tracked hypotheses (a wrong prior
+  /// or a lost track). `ambiguous` answers are no miss: the look-alikes are tracked until
+  /// the drive tells them apart.
+  int misses_before_global = 10;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
   /// While the answer is `ambiguous`, search the whole map again once the odometry path since
@@ -97,12 +97,12 @@ class Localizer {
   /// A firing of the ring at the latest odometry pose (the odometry origin when none was
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
   /// with the drive and localizes: each hypothesis is re-scored by a windowed search around
-  /// it, carried by odometry; without hypotheses (at first, after
-  /// LocalizerOptions::misses_before_global `not localized` answers in a row, or when every
-  /// window left the map or grew past max_half_xy_m), and while the answer is `ambiguous`
-  /// once reseed_after_m has been driven since the last global search, a global search adds
-  /// its seeds (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the
-  /// answer is set_estimate's.
+  /// it, carried by odometry. Without hypotheses (at first, or when every window left the
+  /// map or grew past max_half_xy_m), after LocalizerOptions::misses_before_global `not
+  /// localized` answers in a row, and while the answer is `ambiguous` once reseed_after_m
+  /// has been driven since the last global search, a global search adds its seeds
+  /// (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the answer is
+  /// set_estimate's.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
