@@ -216,6 +216,35 @@ void run(const TrackArgs& args) {
   if (!args.json) print_summary(tally, args.truth);
 }
 
+/// The options of the odometry, the laser, the search and the trials.
+void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
+  cmd->add_option("--odometry", args.odometry,
+                  "laser (the laser lines' pose fields) | odom (the ODOM lines)")
+      ->capture_default_str();
+  cmd->add_option("--odometry-noise", args.odometry_noise,
+                  "seeded systematic odometry error FRAC,DEG_PER_M (length share, heading drift "
+                  "per metre), for logs whose poses are corrected");
+  cmd->add_option("--seed", args.seed, "seed of --odometry-noise")->capture_default_str();
+  cmd->add_option("--max-range", args.max_range, "laser returns beyond this are no return (m)")
+      ->capture_default_str();
+  cmd->add_option("--resolution", args.resolution,
+                  "translation step and grid cell (m; 0: the map's cell)")
+      ->capture_default_str();
+  cmd->add_option("--drive-window-m", args.window_m,
+                  "scans up to this far back along the path join the latest")
+      ->capture_default_str();
+  cmd->add_option("--trials", args.trial_count,
+                  "with --global: this many global localizations from seeded starts, each "
+                  "driving on until --drive-m; prints each trial and a summary")
+      ->capture_default_str();
+  cmd->add_option("--drive-m", args.trials.drive_m, "--trials: the drive's length (m)")
+      ->capture_default_str();
+  cmd->add_option("--drop-ratio", args.drop_ratio,
+                  "hypotheses scoring less than this share of the best are dropped; while two "
+                  "survive the answer is ambiguous")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void add_track(CLI::App& app) {
@@ -248,31 +277,7 @@ void add_track(CLI::App& app) {
   cmd->add_option("--block-scans", args->split.block_scans,
                   "--part: block length (scans) when the timestamps are unusable")
       ->capture_default_str();
-  cmd->add_option("--odometry", args->odometry,
-                  "laser (the laser lines' pose fields) | odom (the ODOM lines)")
-      ->capture_default_str();
-  cmd->add_option("--odometry-noise", args->odometry_noise,
-                  "seeded systematic odometry error FRAC,DEG_PER_M (length share, heading drift "
-                  "per metre), for logs whose poses are corrected");
-  cmd->add_option("--seed", args->seed, "seed of --odometry-noise")->capture_default_str();
-  cmd->add_option("--max-range", args->max_range, "laser returns beyond this are no return (m)")
-      ->capture_default_str();
-  cmd->add_option("--resolution", args->resolution,
-                  "translation step and grid cell (m; 0: the map's cell)")
-      ->capture_default_str();
-  cmd->add_option("--drive-window-m", args->window_m,
-                  "scans up to this far back along the path join the latest")
-      ->capture_default_str();
-  cmd->add_option("--trials", args->trial_count,
-                  "with --global: this many global localizations from seeded starts, each "
-                  "driving on until --drive-m; prints each trial and a summary")
-      ->capture_default_str();
-  cmd->add_option("--drive-m", args->trials.drive_m, "--trials: the drive's length (m)")
-      ->capture_default_str();
-  cmd->add_option("--drop-ratio", args->drop_ratio,
-                  "hypotheses scoring less than this share of the best are dropped; while two "
-                  "survive the answer is ambiguous")
-      ->capture_default_str();
+  add_sensor_options(cmd, *args);
   cmd->add_flag("--truth-from-log", args->truth,
                 "the log's poses are the truth (SLAM-corrected logs): add error_m, error_deg");
   cmd->add_flag("--json", args->json, "one JSON object per processed scan (JSON Lines)");
