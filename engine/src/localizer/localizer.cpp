@@ -195,7 +195,9 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   const double travelled_before = next.travelled_m;
   // The searches run without the lock, so readers get the previous estimate meanwhile.
   next.since_global_m += next.travelled_m;
-  const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
+  // Look-alikes tracked: a grown drive may tell them apart, or show the truth elsewhere. (A
+  // lone hypothesis whose window holds a look-alike is no reason to search the map.)
+  const bool ambiguous = next.set.hypotheses.size() > 1;
   const bool lost = next.misses >= options_.misses_before_global;
   std::vector<TrackedHypothesis> candidates = follow(next, taken_at, observation);
   std::optional<Estimate> global;

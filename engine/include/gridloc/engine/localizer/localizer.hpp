@@ -37,9 +37,9 @@ struct LocalizerOptions {
   int misses_before_global = 10;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
-  /// While the answer is `ambiguous`, search the whole map again once the odometry path since
-  /// the last global search reaches this (m): the drive behind the latest observation has
-  /// grown, and the truth may lie outside the tracked set; the tracked hypotheses compete
+  /// While several hypotheses are tracked, search the whole map again once the odometry path
+  /// since the last global search reaches this (m): the drive behind the latest observation
+  /// has grown, and the truth may lie outside the tracked set; the tracked hypotheses compete
   /// with the new seeds (0: at every observation).
   double reseed_after_m = 1.0;
   /// Driver values up to this far above a sonar's max range read as no echo (from_driver).
@@ -99,10 +99,10 @@ class Localizer {
   /// with the drive and localizes: each hypothesis is re-scored by a windowed search around
   /// it, carried by odometry. Without hypotheses (at first, or when every window left the
   /// map or grew past max_half_xy_m), after LocalizerOptions::misses_before_global `not
-  /// localized` answers in a row, and while the answer is `ambiguous` once reseed_after_m
-  /// has been driven since the last global search, a global search adds its seeds
-  /// (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the answer is
-  /// set_estimate's.
+  /// localized` answers in a row, and while several hypotheses are tracked once
+  /// reseed_after_m has been driven since the last global search, a global search adds its
+  /// seeds (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the
+  /// answer is set_estimate's.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
