@@ -195,14 +195,15 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   const double travelled_before = next.travelled_m;
   // The searches run without the lock, so readers get the previous estimate meanwhile.
   next.since_global_m += next.travelled_m;
-  // Look-alikes tracked: a grown drive may tell them apart, or show the truth elsewhere. (A
-  // lone hypothesis whose window holds a look-alike is no reason to search the map.)
-  const bool ambiguous = next.set.hypotheses.size() > 1;
+  const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
   const bool lost = next.misses >= options_.misses_before_global;
   std::vector<TrackedHypothesis> candidates = follow(next, taken_at, observation);
   std::optional<Estimate> global;
   if (candidates.empty() || lost || (ambiguous && next.since_global_m >= options_.reseed_after_m)) {
-    global = search_globally(observation, candidates);
+    // A lone track, unsure but not lost: only seeds near it join (odometry vouches for that
+    // place; a look-alike across the building does not displace the track).
+    const bool near_only = next.set.hypotheses.size() == 1 && !candidates.empty() && !lost;
+    global = search_globally(observation, candidates, near_only);
     next.since_global_m = 0.0;
     next.misses = 0;
   }
@@ -220,13 +221,20 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
 }
 
 Estimate Localizer::search_globally(const Observation& observation,
-                                    std::vector<TrackedHypothesis>& candidates) const {
+                                    std::vector<TrackedHypothesis>& candidates,
+                                    bool near_only) const {
   const HypothesisSetOptions& set_options = options_.hypothesis_set;
   const Estimate global = estimator_.estimate(observation, estimator_.global_window(observation),
                                               set_options.max_hypotheses + 1);
   if (global.verdict == Verdict::NotLocalized) return global;
+  const std::vector<TrackedHypothesis> tracked = candidates;
+  const auto near_tracked = [&](const TrackedHypothesis& seed) {
+    return std::any_of(tracked.begin(), tracked.end(), [&](const TrackedHypothesis& h) {
+      return std::hypot(seed.pose.x - h.pose.x, seed.pose.y - h.pose.y) <= options_.max_half_xy_m;
+    });
+  };
   for (TrackedHypothesis& seed : seed_hypotheses(global, set_options).hypotheses) {
-    candidates.push_back(std::move(seed));
+    if (!near_only || near_tracked(seed)) candidates.push_back(std::move(seed));
   }
   return global;
 }

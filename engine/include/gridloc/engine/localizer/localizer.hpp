@@ -37,10 +37,10 @@ struct LocalizerOptions {
   int misses_before_global = 10;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
-  /// While several hypotheses are tracked, search the whole map again once the odometry path
-  /// since the last global search reaches this (m): the drive behind the latest observation
-  /// has grown, and the truth may lie outside the tracked set; the tracked hypotheses compete
-  /// with the new seeds (0: at every observation).
+  /// While the answer is `ambiguous`, search the whole map again once the odometry path since
+  /// the last global search reaches this (m): the drive behind the latest observation has
+  /// grown and may tell the look-alikes apart (with one hypothesis tracked, only the seeds
+  /// within max_half_xy_m of it join; 0: at every observation).
   double reseed_after_m = 1.0;
   /// Driver values up to this far above a sonar's max range read as no echo (from_driver).
   double max_range_slack_m = 0.01;
@@ -98,11 +98,11 @@ class Localizer {
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
   /// with the drive and localizes: each hypothesis is re-scored by a windowed search around
   /// it, carried by odometry. Without hypotheses (at first, or when every window left the
-  /// map or grew past max_half_xy_m), after LocalizerOptions::misses_before_global `not
-  /// localized` answers in a row, and while several hypotheses are tracked once
-  /// reseed_after_m has been driven since the last global search, a global search adds its
-  /// seeds (seed_hypotheses; none when it is `not localized`). Then merge_and_prune; the
-  /// answer is set_estimate's.
+  /// map or grew past max_half_xy_m) and after LocalizerOptions::misses_before_global `not
+  /// localized` answers in a row, a global search adds its seeds (seed_hypotheses; none when
+  /// it is `not localized`); while the answer is `ambiguous`, once reseed_after_m has been
+  /// driven since the last global search, one adds its seeds (near the hypothesis when only
+  /// one is tracked). Then merge_and_prune; the answer is set_estimate's.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
@@ -123,9 +123,10 @@ class Localizer {
   /// state) and publishes it.
   void localize(LocalizerState next, const Pose2& taken_at, const Observation& observation);
   /// A global search asking for the set's size plus one distinct poses; unless it is `not
-  /// localized`, its seeds (seed_hypotheses) join `candidates`.
+  /// localized`, its seeds (seed_hypotheses) join `candidates`: all of them, or with
+  /// `near_only` those within max_half_xy_m of a candidate.
   Estimate search_globally(const Observation& observation,
-                           std::vector<TrackedHypothesis>& candidates) const;
+                           std::vector<TrackedHypothesis>& candidates, bool near_only) const;
   /// Each hypothesis of next.set re-scored in its window (not pruned); those whose window
   /// leaves the map or grows past max_half_xy_m are left out.
   std::vector<TrackedHypothesis> follow(const LocalizerState& next, const Pose2& taken_at,
