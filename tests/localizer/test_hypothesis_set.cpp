@@ -44,7 +44,9 @@ TEST(HypothesisSet, MergesThoseThatMetAndDropsThoseFarBelow) {
                                         {{1.1, 1.0, 0.05}, {}, 95, {}},  // meets the first
                                         {{4.0, 1.0, 0.0}, {}, 90, {}},
                                         {{4.0, 1.0, 3.0}, {}, 60, {}}};  // far below
-  merge_and_prune(set, {});
+  HypothesisSetOptions options;
+  options.drop_ratio = 0.8;
+  merge_and_prune(set, options);
   ASSERT_EQ(set.size(), 2u);
   EXPECT_EQ(set[0].score, 95.0);
   EXPECT_EQ(set[1].pose.x, 4.0);
