@@ -145,8 +145,7 @@ std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const Correlatio
   std::vector<LatticePose> peaks{result.best};
   std::vector<LatticePose> seen = result.scored;
   while (peaks.size() < wanted) {
-    bnb.exclude.push_back(
-        neighbourhood(peaks.back(), options.resolution, search.lattice, options));
+    bnb.exclude.push_back(neighbourhood(peaks.back(), options.resolution, search.lattice, options));
     bnb.incumbent = best_outside(seen, bnb.exclude);
     SearchResult next;
     next.best = bnb.incumbent.value_or(LatticePose{});
@@ -167,12 +166,12 @@ std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const Correlatio
 /// winner first.
 std::vector<LatticePose> this_many_hypotheses(WindowSearch& search,
                                               const CorrelationOptions& options,
-                                    std::chrono::steady_clock::time_point start) {
+                                              std::chrono::steady_clock::time_point start) {
   if (options.strategy == SearchStrategy::BranchAndBound) {
     return exact_hypotheses(search, options, start);
   }
-  return distinct_peaks(search.result.scored, options.resolution, search.lattice,
-                        options, static_cast<std::size_t>(options.hypotheses));
+  return distinct_peaks(search.result.scored, options.resolution, search.lattice, options,
+                        static_cast<std::size_t>(options.hypotheses));
 }
 
 /// peak_covariance() of the winner within `cells`, reusing branch and bound's heading grids.
