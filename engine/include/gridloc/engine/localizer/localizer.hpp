@@ -2,8 +2,9 @@
 /// The Localizer: the facade a navigation stack links (issue 13). Built once from a map and
 /// the sonar ring or a laser, it is fed odometry and sonar firings or scans as the robot
 /// drives and keeps the current Estimate: each observation is fused with the drive behind it
-/// (fuse_firings, fuse_scans) and matched by the exact correlation search, globally until a
-/// fix, then in a window around the fix carried along by odometry.
+/// (fuse_firings, fuse_scans) and matched by the exact correlation search: globally at
+/// first, then in a window around each hypothesis of a HypothesisSet carried along by
+/// odometry, until the drive leaves one.
 #include <Eigen/Core>
 #include <mutex>
 #include <optional>
