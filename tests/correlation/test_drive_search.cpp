@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
@@ -62,6 +63,15 @@ std::vector<DriveCase> drive_cases(const OccupancyMap& map, int count, std::uint
   return cases;
 }
 
+/// Branch and bound's answer is the exhaustive reference's, proven optimal.
+void expect_same_winner(const Estimate& fast, const Estimate& reference) {
+  EXPECT_EQ(fast.score, reference.score);
+  EXPECT_EQ(fast.lattice_pose.x, reference.lattice_pose.x);
+  EXPECT_EQ(fast.lattice_pose.y, reference.lattice_pose.y);
+  EXPECT_EQ(fast.lattice_pose.theta, reference.lattice_pose.theta);
+  EXPECT_TRUE(fast.stats.proven_optimal);
+}
+
 SearchWindow window_at(const Pose2& center) {
   SearchWindow window;
   window.center = center;
@@ -80,11 +90,7 @@ TEST(DriveSearch, BranchAndBoundEqualsExhaustiveOnAFusedDrive) {
     const Pose2 prior = compose(drive.truth, {0.3, -0.2, 0.2});
     const Estimate fast = bnb.estimate(observation, window_at(prior));
     const Estimate reference = exhaustive.estimate(observation, window_at(prior));
-    EXPECT_EQ(fast.score, reference.score);
-    EXPECT_EQ(fast.lattice_pose.x, reference.lattice_pose.x);
-    EXPECT_EQ(fast.lattice_pose.y, reference.lattice_pose.y);
-    EXPECT_EQ(fast.lattice_pose.theta, reference.lattice_pose.theta);
-    EXPECT_TRUE(fast.stats.proven_optimal);
+    expect_same_winner(fast, reference);
   }
 }
 
@@ -214,11 +220,8 @@ TEST(DriveSearch, BranchAndBoundEqualsExhaustiveOnFusedScans) {
     window.step_theta = deg2rad(2.0);
     const Estimate fast = bnb.estimate(observation, window);
     const Estimate reference = exhaustive.estimate(observation, window);
-    EXPECT_EQ(fast.score, reference.score) << "trial " << trial;
-    EXPECT_EQ(fast.lattice_pose.x, reference.lattice_pose.x);
-    EXPECT_EQ(fast.lattice_pose.y, reference.lattice_pose.y);
-    EXPECT_EQ(fast.lattice_pose.theta, reference.lattice_pose.theta);
-    EXPECT_TRUE(fast.stats.proven_optimal);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    expect_same_winner(fast, reference);
   }
 }
 
