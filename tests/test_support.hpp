@@ -12,12 +12,25 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/grid.hpp"
 
 namespace gridloc::test {
 
 namespace fs = std::filesystem;
 
 /// The source tree's maps/ folder (set by tests/CMakeLists.txt).
+/// A w x h map of `fill` at `res`, its origin (1, -2) and yaw 0.3 (not axis-aligned, so that
+/// frame mistakes show).
+inline OccupancyMap filled_map(int w, int h, CellState fill, double res) {
+  GridGeometry g;
+  g.resolution = res;
+  g.origin = {1.0, -2.0};
+  g.yaw = 0.3;
+  g.width = w;
+  g.height = h;
+  return OccupancyMap(g, fill);
+}
+
 inline std::string maps_dir() {
   return GRIDLOC_TEST_MAPS_DIR;
 }

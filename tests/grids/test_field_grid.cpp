@@ -19,13 +19,7 @@ constexpr CellState O = CellState::Occupied;
 constexpr CellState U = CellState::Unknown;
 
 OccupancyMap make_map(int w, int h, CellState fill, double res = 0.1) {
-  GridGeometry g;
-  g.resolution = res;
-  g.origin = {1.0, -2.0};
-  g.yaw = 0.3;
-  g.width = w;
-  g.height = h;
-  return OccupancyMap(g, fill);
+  return test::filled_map(w, h, fill, res);
 }
 
 /// The field's quantized value of `v` (what the grid stores).
