@@ -31,6 +31,20 @@ inline OccupancyMap filled_map(int w, int h, CellState fill, double res) {
   return OccupancyMap(g, fill);
 }
 
+/// A free w x h map at `res` whose border cells are occupied (walls one cell thick), its
+/// cell (0, 0) at `origin`.
+inline OccupancyMap walled_room(int w, int h, double res, const Eigen::Vector2d& origin) {
+  GridGeometry g;
+  g.resolution = res;
+  g.origin = origin;
+  g.width = w;
+  g.height = h;
+  OccupancyMap map(g, CellState::Free);
+  for (int ix = 0; ix < w; ++ix) map.at(ix, 0) = map.at(ix, h - 1) = CellState::Occupied;
+  for (int iy = 0; iy < h; ++iy) map.at(0, iy) = map.at(w - 1, iy) = CellState::Occupied;
+  return map;
+}
+
 inline std::string maps_dir() {
   return GRIDLOC_TEST_MAPS_DIR;
 }

@@ -25,16 +25,7 @@ using test::TempDir;
 
 /// A 6 m x 4 m room at 5 cm, origin (0, 0).
 OccupancyMap room() {
-  GridGeometry g;
-  g.resolution = 0.05;
-  g.width = 120;
-  g.height = 80;
-  OccupancyMap map(g, CellState::Free);
-  for (int ix = 0; ix < g.width; ++ix)
-    map.at(ix, 0) = map.at(ix, g.height - 1) = CellState::Occupied;
-  for (int iy = 0; iy < g.height; ++iy)
-    map.at(0, iy) = map.at(g.width - 1, iy) = CellState::Occupied;
-  return map;
+  return test::walled_room(120, 80, 0.05, {0.0, 0.0});
 }
 
 /// `scans` FLASER lines (181 readings over the front 180 degrees) driving east then turning,

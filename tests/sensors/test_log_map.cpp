@@ -24,16 +24,7 @@ constexpr double kPi = std::numbers::pi;
 /// A 10 m x 6 m room at 5 cm (walls one cell thick) with an inner wall from the south wall
 /// to y = 3 m at x = 5 m, origin (-1, -2).
 OccupancyMap known_map() {
-  GridGeometry g;
-  g.resolution = 0.05;
-  g.origin = {-1.0, -2.0};
-  g.width = 200;
-  g.height = 120;
-  OccupancyMap map(g, CellState::Free);
-  for (int ix = 0; ix < g.width; ++ix)
-    map.at(ix, 0) = map.at(ix, g.height - 1) = CellState::Occupied;
-  for (int iy = 0; iy < g.height; ++iy)
-    map.at(0, iy) = map.at(g.width - 1, iy) = CellState::Occupied;
+  OccupancyMap map = test::walled_room(200, 120, 0.05, {-1.0, -2.0});
   for (int iy = 0; iy < 60; ++iy) map.at(100, iy) = CellState::Occupied;
   return map;
 }
