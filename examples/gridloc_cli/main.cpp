@@ -5,10 +5,12 @@
 
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
+#include "limit_options.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"gridloc - occupancy-grid correlation localization from a sonar ring"};
   app.require_subcommand(1);
+  gridloc::cli::add_limit_options(app);
   gridloc::cli::add_localize(app);
   gridloc::cli::add_simulate(app);
   gridloc::cli::add_demo(app);

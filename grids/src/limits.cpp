@@ -1,0 +1,95 @@
+#include "gridloc/grids/limits.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void check_positive(double value, const char* field) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw Error(std::string("resource limit ") + field + " must be a positive number, got " +
+                num(value));
+  }
+}
+
+}  // namespace
+
+void ResourceLimits::validate() const {
+  check_positive(max_file_mb, "max_file_mb");
+  check_positive(max_cells, "max_cells");
+  check_positive(max_memory_mb, "max_memory_mb");
+  check_positive(max_beams, "max_beams");
+  check_positive(max_vertices, "max_vertices");
+  check_positive(max_coordinate_m, "max_coordinate_m");
+}
+
+void check_limit(double amount, double limit, const std::string& what, const std::string& unit,
+                 const char* option) {
+  if (amount <= limit) return;
+  throw Error(what + ": " + num(amount) + " " + unit + " exceeds the limit of " + num(limit) + " " +
+              unit + " (raise it with " + option + ")");
+}
+
+double check_grid_cells(double width, double height, const ResourceLimits& limits,
+                        const std::string& what) {
+  if (!(width >= 1.0) || !(height >= 1.0)) {
+    throw Error(what + ": a grid of " + num(width) + " x " + num(height) +
+                " cells is empty or not a number");
+  }
+  const double cells = width * height;
+  check_limit(cells, limits.max_cells, what + " (" + num(width) + " x " + num(height) + ")",
+              "cells", LimitNames::cells);
+  constexpr double kIntMax = std::numeric_limits<int>::max();
+  if (width > kIntMax || height > kIntMax) {
+    throw Error(what + ": a side of " + num(std::max(width, height)) + " cells is too long");
+  }
+  return cells;
+}
+
+void check_memory(double bytes, const ResourceLimits& limits, const std::string& what) {
+  check_limit(std::ceil(bytes / (1024.0 * 1024.0)), limits.max_memory_mb,
+              what + " would need about", "MB", LimitNames::memory_mb);
+}
+
+std::uintmax_t check_input_file(const std::string& path, const std::string& what,
+                                const ResourceLimits& limits) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw Error(path + ": " + what + " not found");
+  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a " + what);
+  if (!fs::is_regular_file(status)) throw Error(path + ": not a regular file (a " + what + ")");
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (ec) throw Error(path + ": cannot read the size of the " + what + ": " + ec.message());
+  check_limit(std::ceil(static_cast<double>(bytes) / (1024.0 * 1024.0)), limits.max_file_mb,
+              path + ": the " + what + " is", "MB", LimitNames::file_mb);
+  return bytes;
+}
+
+std::string read_input_file(const std::string& path, const std::string& what,
+                            const ResourceLimits& limits) {
+  const std::uintmax_t bytes = check_input_file(path, what, limits);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the " + what + " for reading");
+  std::string text(static_cast<std::size_t>(bytes), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(bytes));
+  if (static_cast<std::uintmax_t>(in.gcount()) != bytes) {
+    throw Error(path + ": the " + what + " could not be read whole");
+  }
+  return text;
+}
+
+}  // namespace gridloc
