@@ -9,22 +9,18 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 #include <limits>
 #include <memory>
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "octomap_file.hpp"
 
 namespace gridloc {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The first line of each kind of OctoMap file (octomap's AbstractOcTree / AbstractOccupancyOcTree).
-constexpr const char* kBinaryHeader = "# Octomap OcTree binary file";
-constexpr const char* kFullHeader = "# Octomap OcTree file";
 // Largest 2-D map produced (cells): a guard against a tiny resolution on a large tree.
 constexpr double kMaxCells = 1e8;
 // Tolerance, in leaf or cell units, for comparing voxel faces with band edges and cell edges
@@ -60,81 +56,48 @@ void check_slice(const std::string& path, const OctomapSlice& s) {
     fail(path, "OctoMap slice resolution must be positive when given (0 = the tree's), got " +
                    num(s.resolution));
   }
+  if (s.max_nodes == 0) fail(path, "OctoMap max_nodes must be at least 1, got 0");
 }
 
-// Holds what octomap writes to std::cerr while alive (its progress notes, "Reading binary
-// octree type OcTree", and its OCTOMAP_ERROR_STR errors, which go into our message instead).
-// A few of octomap's errors use fprintf(stderr) and still reach the console (a truncated .bt:
-// "Tree size mismatch"). std::cerr is process-wide: other threads' output during a read lands
-// here too and is dropped.
-class CerrCapture {
- public:
-  CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
-  ~CerrCapture() { std::cerr.rdbuf(old_); }
-  CerrCapture(const CerrCapture&) = delete;
-  CerrCapture& operator=(const CerrCapture&) = delete;
-  /// octomap's "ERROR: ..." lines, joined, or "" if none.
-  std::string errors() const {
-    std::istringstream in(text_.str());
-    std::string line, out;
-    while (std::getline(in, line)) {
-      if (line.rfind("ERROR: ", 0) != 0) continue;
-      out += (out.empty() ? "" : "; ") + line.substr(7);
-    }
-    return out;
+// octomap's own data readers on the checked bytes, as OcTree::readBinary and
+// AbstractOcTree::read call them after the header (which is parsed in octomap_file.cpp, so
+// that octomap's header warnings and errors, printed to stderr, are never reached).
+std::unique_ptr<octomap::OcTree> tree_of(const std::string& path,
+                                         octomap_detail::OctomapFile file) {
+  auto tree = std::make_unique<octomap::OcTree>(file.resolution);
+  std::istringstream in(std::move(file.data));
+  if (file.binary) {
+    tree->readBinaryData(in);
+  } else {
+    tree->readData(in);
   }
-
- private:
-  std::ostringstream text_;
-  std::streambuf* old_;
-};
-
-std::string octomap_says(const CerrCapture& capture) {
-  const std::string e = capture.errors();
-  return e.empty() ? "" : " (octomap: " + e + ")";
+  if (tree->size() != file.size) {
+    fail(path, "octomap read " + std::to_string(tree->size()) + " nodes of the checked " +
+                   std::to_string(file.size));
+  }
+  return tree;
 }
 
-// Reads the tree; its kind is told by the extension and checked against the first line, so
-// that a wrong file gets our message rather than octomap's console output.
-std::unique_ptr<octomap::OcTree> read_tree(const std::string& path) {
+// Reads the tree; its kind is told by the extension, and the file is checked whole before
+// octomap reads it, so that a wrong file gets our message rather than octomap's console output
+// or a tree silently cut short.
+std::unique_ptr<octomap::OcTree> read_tree(const std::string& path, const OctomapSlice& slice) {
   const std::string ext = lower_extension(path);
   if (ext != ".bt" && ext != ".ot") {
     fail(path,
          "an OctoMap file must end in .bt (binary tree) or .ot (full tree), not '" + ext + "'");
   }
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "OctoMap file not found");
-  if (!fs::is_regular_file(path, ec)) fail(path, "not a regular file (an OctoMap .bt/.ot file)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the OctoMap file for reading");
-  std::string first;
-  std::getline(in, first);
   const bool binary = ext == ".bt";
-  const std::string header = binary ? kBinaryHeader : kFullHeader;
-  if (first.rfind(header, 0) != 0) {
-    fail(path, std::string("not an OctoMap ") + (binary ? "binary (.bt)" : "full (.ot)") +
-                   " file: the first line is not '" + header + "'");
+  octomap_detail::OctomapFile file =
+      octomap_detail::read_octomap_file(path, binary, slice.max_nodes);
+  // A .bt holds occupancy codes whatever its id; a .ot holds each node's value, whose layout
+  // depends on the type ("1": octomap's deprecated id of an OcTree).
+  if (!binary && file.id != "OcTree" && file.id != "1") {
+    fail(path, "holds an OctoMap " + file.id.substr(0, 40) + ", not an OcTree");
   }
-  in.clear();
-  in.seekg(0);
-
-  CerrCapture capture;
-  if (binary) {
-    auto tree = std::make_unique<octomap::OcTree>(0.1);  // readBinary sets the resolution
-    if (!tree->readBinary(in)) {
-      fail(path, "malformed or truncated OctoMap binary tree" + octomap_says(capture));
-    }
-    return tree;
-  }
-  std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(in));
-  if (!tree) {
-    fail(path, "malformed or truncated OctoMap tree, or a tree type octomap lacks" +
-                   octomap_says(capture));
-  }
-  auto* octree = dynamic_cast<octomap::OcTree*>(tree.get());
-  if (!octree) fail(path, "holds an OctoMap " + tree->getTreeType() + ", not an OcTree");
-  tree.release();
-  return std::unique_ptr<octomap::OcTree>(octree);
+  octomap_detail::check_octomap_data(path, file);
+  if (file.size == 0) fail(path, "the OctoMap tree is empty");
+  return tree_of(path, std::move(file));
 }
 
 // A leaf voxel as a box of leaf-index units: [lo, hi) per axis, faces at index x resolution.
@@ -166,8 +129,7 @@ bool is_octomap_path(const std::string& path) {
 
 OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice) {
   check_slice(path, slice);
-  const std::unique_ptr<octomap::OcTree> tree = read_tree(path);
-  if (tree->size() == 0 || tree->getNumLeafNodes() == 0) fail(path, "the OctoMap tree is empty");
+  const std::unique_ptr<octomap::OcTree> tree = read_tree(path, slice);
   const double res = tree->getResolution();
 
   // Pass 1: the bounding box of every known voxel, and whether any overlaps the band.

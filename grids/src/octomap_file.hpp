@@ -1,0 +1,41 @@
+#pragma once
+// OctoMap files read into memory and checked before octomap sees them (internal to
+// octomap_io.cpp): octomap's readers print to stderr and load truncated data silently, so
+// every byte is accounted for here first and octomap is only handed data it reads cleanly.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace gridloc::octomap_detail {
+
+/// An OctoMap file whose header and node data have been checked.
+struct OctomapFile {
+  bool binary = false;          ///< a .bt (child codes only) rather than a .ot (full nodes)
+  std::string id;               ///< the header's tree type ("OcTree" for a .ot)
+  std::uint64_t size = 0;       ///< the header's node count (equal to the data's once checked)
+  double resolution = 0.0;      ///< the header's leaf size (m), positive and finite
+  std::size_t data_offset = 0;  ///< where the node data starts in the file (bytes)
+  std::string data;             ///< the node data: everything after the header's `data` line
+};
+
+/// Octree depth of octomap's trees: the root is at depth 0, the leaves at depth 16 at most.
+inline constexpr int kTreeDepth = 16;
+/// Bytes one node takes at most in a file's data (a .ot node: a float and a child byte).
+inline constexpr std::uint64_t kMaxBytesPerNode = 5;
+/// Bytes a header may take besides the nodes (octomap's own headers take about 130).
+inline constexpr std::uint64_t kMaxHeaderBytes = 1 << 20;
+
+/// Reads `path` (a regular file, `binary` = .bt) into memory, at most the bytes that a tree of
+/// `max_nodes` nodes takes, and parses its header: octomap's first line, then `id`, `size`,
+/// `res` and `data` (comment lines starting with '#' allowed). The data is not walked yet.
+/// Throws gridloc::Error naming the file and the fault.
+OctomapFile read_octomap_file(const std::string& path, bool binary, std::uint64_t max_nodes);
+
+/// Walks the node data to its end as octomap would read it (.bt: two bytes of 2-bit child codes
+/// per inner node; .ot: a float log-odds and a child bit byte per node, depth first) and checks
+/// that it is complete, holds exactly the header's `size` nodes, no node below the leaf level,
+/// no inner .bt node without children, only finite .ot log-odds and no byte after the tree.
+/// Throws gridloc::Error naming the file and the fault.
+void check_octomap_data(const std::string& path, const OctomapFile& file);
+
+}  // namespace gridloc::octomap_detail
