@@ -15,15 +15,15 @@ namespace {
 // Thrown inside the walk when the data ends in the middle of a node.
 struct DataEnds {};
 
-// Walks one file's data, counting the nodes octomap would create.
+// Walks one file's data, counting the nodes read whole: a .ot node once its value and child
+// byte are read, a .bt leaf once its parent's codes are, a .bt inner node once its own are.
 class DataWalker {
  public:
   DataWalker(const std::string& path, const OctomapFile& file) : path_(path), file_(file) {}
 
   /// The number of nodes in the data, which is read to the end of the tree.
   std::uint64_t walk() {
-    if (file_.data.empty()) return 0;
-    nodes_ = 1;  // the root
+    if (file_.data.empty() && file_.size == 0) return 0;
     if (file_.binary) {
       binary_node(0);
     } else {
@@ -41,13 +41,12 @@ class DataWalker {
   void binary_node(int depth) {
     const unsigned low = byte();
     const unsigned codes = low | byte() << 8;
-    bool any_child = false;
+    if (codes == 0 && depth > 0) fail("an inner node without children");
+    ++nodes_;
     for (int child = 0; child < 8; ++child) {
       const unsigned code = (codes >> (2 * child)) & 3u;
-      any_child = any_child || code != 0;
-      nodes_ += code != 0;
+      nodes_ += code == 1u || code == 2u;
     }
-    if (!any_child && depth > 0) fail("an inner node without children");
     for (int child = 0; child < 8; ++child) {
       if (((codes >> (2 * child)) & 3u) != 3u) continue;
       if (depth + 1 == kTreeDepth) fail("a node below the leaf level (depth 16)");
@@ -62,13 +61,12 @@ class DataWalker {
     if (file_.data.size() - pos_ < sizeof log_odds) throw DataEnds{};
     std::memcpy(&log_odds, file_.data.data() + pos_, sizeof log_odds);
     pos_ += sizeof log_odds;
-    if (!std::isfinite(log_odds)) fail("a node whose log-odds is not a number");
+    if (!std::isfinite(log_odds)) fail("a node whose log-odds is not finite");
     const unsigned children = byte();
     if (children != 0 && depth == kTreeDepth) fail("a node below the leaf level (depth 16)");
+    ++nodes_;
     for (int child = 0; child < 8; ++child) {
-      if ((children >> child & 1u) == 0) continue;
-      ++nodes_;
-      full_node(depth + 1);
+      if ((children >> child & 1u) != 0) full_node(depth + 1);
     }
   }
 
@@ -106,8 +104,10 @@ void check_octomap_data(const std::string& path, const OctomapFile& file) {
                 std::to_string(nodes));
   }
   if (walker.end() != file.data.size()) {
-    throw Error(path + ": " + std::to_string(file.data.size() - walker.end()) +
-                " bytes follow the end of the OctoMap tree (its " + std::to_string(nodes) +
+    const std::size_t extra = file.data.size() - walker.end();
+    throw Error(path + ": " + std::to_string(extra) +
+                (extra == 1 ? " byte follows" : " bytes follow") +
+                " the end of the OctoMap tree (its " + std::to_string(nodes) +
                 " nodes end at byte " + std::to_string(file.data_offset + walker.end()) + " of " +
                 std::to_string(file.data_offset + file.data.size()) + ")");
   }

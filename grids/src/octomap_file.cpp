@@ -35,6 +35,15 @@ bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
 }
 
+// At most 40 characters of `text` for a message, each unprintable one as '?'.
+std::string shown(std::string_view text) {
+  std::string out(text.substr(0, 40));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+  }
+  return out;
+}
+
 // The file's bytes, once it is known to be a regular file no larger than a tree of `max_nodes`
 // nodes takes.
 std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
@@ -130,7 +139,7 @@ std::size_t scan_header(const std::string& path, const std::string& bytes, std::
     } else if (token == "res") {
       take_value(path, scan, token, raw.res);
     } else {
-      fail(path, "unknown keyword '" + std::string(token.substr(0, 40)) +
+      fail(path, "unknown keyword '" + shown(token) +
                      "' in the OctoMap header (expected id, size, res, data)");
     }
   }
@@ -144,7 +153,7 @@ std::uint64_t parse_size(const std::string& path, const std::optional<std::strin
   const char* end = text->data() + text->size();
   const auto [ptr, ec] = std::from_chars(text->data(), end, size);
   if (ec != std::errc() || ptr != end || size > std::numeric_limits<std::uint32_t>::max()) {
-    fail(path, "the OctoMap header's size '" + text->substr(0, 40) +
+    fail(path, "the OctoMap header's size '" + shown(*text) +
                    "' is not a node count (a whole number below 2^32)");
   }
   if (size > max_nodes) {
@@ -160,10 +169,11 @@ double parse_resolution(const std::string& path, const std::optional<std::string
   const char* end = text->data() + text->size();
   const auto [ptr, ec] = std::from_chars(text->data(), end, res);
   if (ec != std::errc() || ptr != end || !std::isfinite(res)) {
-    fail(path, "the OctoMap header's res '" + text->substr(0, 40) + "' is not a number");
+    fail(path, "the OctoMap header's res '" + shown(*text) + "' is not a number");
   }
   if (!(res >= kMinResolution && res <= kMaxResolution)) {
-    fail(path, "the OctoMap header's res " + *text + " is not a leaf size from 1e-6 to 1e6 m");
+    fail(path,
+         "the OctoMap header's res " + shown(*text) + " is not a leaf size from 1e-6 to 1e6 m");
   }
   return res;
 }
@@ -190,6 +200,11 @@ OctomapFile read_octomap_file(const std::string& path, bool binary, std::uint64_
   OctomapFile file;
   file.binary = binary;
   if (!raw.id) fail(path, "the OctoMap header has no 'id' (the tree type)");
+  // A .bt holds occupancy codes whatever its id; a .ot holds each node's value, whose layout
+  // depends on the type ("1": octomap's deprecated id of an OcTree).
+  if (!binary && *raw.id != "OcTree" && *raw.id != "1") {
+    fail(path, "holds an OctoMap " + shown(*raw.id) + ", not an OcTree");
+  }
   file.id = *raw.id;
   file.size = parse_size(path, raw.size, max_nodes);
   file.resolution = parse_resolution(path, raw.res);

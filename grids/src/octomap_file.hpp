@@ -27,7 +27,8 @@ inline constexpr std::uint64_t kMaxHeaderBytes = 1 << 20;
 
 /// Reads `path` (a regular file, `binary` = .bt) into memory, at most the bytes that a tree of
 /// `max_nodes` nodes takes, and parses its header: octomap's first line, then `id`, `size`,
-/// `res` and `data` (comment lines starting with '#' allowed). The data is not walked yet.
+/// `res` and `data` (comment lines starting with '#' allowed); a .ot must hold an OcTree. The
+/// data is not walked yet.
 /// Throws gridloc::Error naming the file and the fault.
 OctomapFile read_octomap_file(const std::string& path, bool binary, std::uint64_t max_nodes);
 

@@ -90,11 +90,6 @@ std::unique_ptr<octomap::OcTree> read_tree(const std::string& path, const Octoma
   const bool binary = ext == ".bt";
   octomap_detail::OctomapFile file =
       octomap_detail::read_octomap_file(path, binary, slice.max_nodes);
-  // A .bt holds occupancy codes whatever its id; a .ot holds each node's value, whose layout
-  // depends on the type ("1": octomap's deprecated id of an OcTree).
-  if (!binary && file.id != "OcTree" && file.id != "1") {
-    fail(path, "holds an OctoMap " + file.id.substr(0, 40) + ", not an OcTree");
-  }
   octomap_detail::check_octomap_data(path, file);
   if (file.size == 0) fail(path, "the OctoMap tree is empty");
   return tree_of(path, std::move(file));
