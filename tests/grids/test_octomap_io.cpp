@@ -319,8 +319,8 @@ TEST_F(OctomapIo, TruncatedBinaryTreeIsAnError) {
   ss << in.rdbuf();
   const std::string whole = ss.str();
   const std::string cut = dir_.write("cut.bt", whole.substr(0, whole.size() / 2));
-  // (octomap itself prints "ERROR: Tree size mismatch ..." to stderr with fprintf, which the
-  // loader cannot catch.)
+  // (octomap itself would print "ERROR: Tree size mismatch ..." to stderr; the loader checks
+  // the data first, so octomap never reads it: see test_octomap_check.cpp.)
   expect_error([&] { load_octomap(cut); }, {cut, "truncated"});
 }
 
