@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <string_view>
 
@@ -44,11 +45,20 @@ std::string shown(std::string_view text) {
   return out;
 }
 
-// The file's bytes, once it is known to be a regular file no larger than a tree of `max_nodes`
-// nodes takes.
-std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
+// Bytes a file may take for a tree of `max_nodes` nodes (saturating, for a huge limit).
+std::uint64_t max_file_bytes(std::uint64_t max_nodes) {
+  constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+  if (max_nodes > (kMax - kMaxHeaderBytes) / kMaxBytesPerNode) return kMax;
+  return kMaxHeaderBytes + kMaxBytesPerNode * max_nodes;
+}
+
+// The size of `path`, once it is known to be a regular file.
+std::uint64_t regular_file_size(const std::string& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::none) {
+    fail(path, "cannot read the OctoMap file: " + ec.message());
+  }
   if (!fs::exists(status)) fail(path, "OctoMap file not found");
   if (fs::is_directory(status)) {
     fail(path, "is a directory, not a regular file (an OctoMap .bt/.ot file)");
@@ -56,7 +66,14 @@ std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
   if (!fs::is_regular_file(status)) fail(path, "not a regular file (an OctoMap .bt/.ot file)");
   const std::uintmax_t bytes = fs::file_size(path, ec);
   if (ec) fail(path, "cannot read the OctoMap file's size: " + ec.message());
-  const std::uint64_t max_bytes = kMaxHeaderBytes + kMaxBytesPerNode * max_nodes;
+  return bytes;
+}
+
+// The file's bytes, once it is known to be a regular file no larger than a tree of `max_nodes`
+// nodes takes.
+std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
+  const std::uint64_t bytes = regular_file_size(path);
+  const std::uint64_t max_bytes = max_file_bytes(max_nodes);
   if (bytes > max_bytes) {
     fail(path, "the OctoMap file is " + std::to_string(bytes) + " bytes, more than a tree of " +
                    "max_nodes = " + std::to_string(max_nodes) + " nodes takes (" +
@@ -64,12 +81,17 @@ std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open the OctoMap file for reading");
-  std::string data(static_cast<std::size_t>(bytes), '\0');
+  std::string data;
+  try {
+    data.resize(static_cast<std::size_t>(bytes));
+  } catch (const std::bad_alloc&) {
+    fail(path, "not enough memory to read the " + std::to_string(bytes) + "-byte OctoMap file");
+  }
   in.read(data.data(), static_cast<std::streamsize>(bytes));
-  if (static_cast<std::uintmax_t>(in.gcount()) != bytes ||
+  if (static_cast<std::uint64_t>(in.gcount()) != bytes ||
       in.peek() != std::char_traits<char>::eof()) {
-    fail(path, "the OctoMap file changed size while it was read (" + std::to_string(bytes) +
-                   " bytes expected)");
+    fail(path, "could not read the OctoMap file whole (" + std::to_string(bytes) +
+                   " bytes expected; did it change while it was read?)");
   }
   return data;
 }

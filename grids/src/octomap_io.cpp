@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <new>
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
@@ -66,10 +67,15 @@ std::unique_ptr<octomap::OcTree> tree_of(const std::string& path,
                                          octomap_detail::OctomapFile file) {
   auto tree = std::make_unique<octomap::OcTree>(file.resolution);
   std::istringstream in(std::move(file.data));
-  if (file.binary) {
-    tree->readBinaryData(in);
-  } else {
-    tree->readData(in);
+  try {
+    if (file.binary) {
+      tree->readBinaryData(in);
+    } else {
+      tree->readData(in);
+    }
+  } catch (const std::bad_alloc&) {
+    fail(path, "not enough memory for the OctoMap tree of " + std::to_string(file.size) +
+                   " nodes (max_nodes limits it)");
   }
   if (tree->size() != file.size) {
     fail(path, "octomap read " + std::to_string(tree->size()) + " nodes of the checked " +

@@ -361,6 +361,8 @@ TEST_F(OctomapCheck, LimitsAreChecked) {
   EXPECT_EQ(load_error(ot_, s), ot_ + ": the OctoMap tree has 51 nodes, more than max_nodes = 50");
   s.max_nodes = 51;
   EXPECT_EQ(load_error(ot_, s), "no error");
+  s.max_nodes = std::numeric_limits<std::uint64_t>::max();  // no overflow of the byte limit
+  EXPECT_EQ(load_error(ot_, s), "no error");
   s.max_nodes = 0;
   EXPECT_EQ(load_error(ot_, s), ot_ + ": OctoMap max_nodes must be at least 1, got 0");
   // The file may hold 5 bytes per node and 1 MiB of header: with max_nodes 1, 1 MiB + 6 bytes
