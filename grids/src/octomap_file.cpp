@@ -7,8 +7,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <new>
 #include <optional>
@@ -18,8 +16,6 @@
 
 namespace gridloc::octomap_detail {
 namespace {
-
-namespace fs = std::filesystem;
 
 // The first line of each kind of OctoMap file (octomap's AbstractOcTree / AbstractOccupancyOcTree).
 constexpr std::string_view kBinaryHeader = "# Octomap OcTree binary file";
@@ -45,55 +41,22 @@ std::string shown(std::string_view text) {
   return out;
 }
 
-// Bytes a file may take for a tree of `max_nodes` nodes (saturating, for a huge limit).
-std::uint64_t max_file_bytes(std::uint64_t max_nodes) {
-  constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
-  if (max_nodes > (kMax - kMaxHeaderBytes) / kMaxBytesPerNode) return kMax;
-  return kMaxHeaderBytes + kMaxBytesPerNode * max_nodes;
-}
-
-// The size of `path`, once it is known to be a regular file.
-std::uint64_t regular_file_size(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (status.type() == fs::file_type::none) {
-    fail(path, "cannot read the OctoMap file: " + ec.message());
-  }
-  if (!fs::exists(status)) fail(path, "OctoMap file not found");
-  if (fs::is_directory(status)) {
-    fail(path, "is a directory, not a regular file (an OctoMap .bt/.ot file)");
-  }
-  if (!fs::is_regular_file(status)) fail(path, "not a regular file (an OctoMap .bt/.ot file)");
-  const std::uintmax_t bytes = fs::file_size(path, ec);
-  if (ec) fail(path, "cannot read the OctoMap file's size: " + ec.message());
-  return bytes;
-}
-
-// The file's bytes, once it is known to be a regular file no larger than a tree of `max_nodes`
-// nodes takes.
-std::string read_bytes(const std::string& path, std::uint64_t max_nodes) {
-  const std::uint64_t bytes = regular_file_size(path);
-  const std::uint64_t max_bytes = max_file_bytes(max_nodes);
-  if (bytes > max_bytes) {
-    fail(path, "the OctoMap file is " + std::to_string(bytes) + " bytes, more than a tree of " +
-                   "max_nodes = " + std::to_string(max_nodes) + " nodes takes (" +
-                   std::to_string(max_bytes) + " bytes)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the OctoMap file for reading");
-  std::string data;
+// The file's bytes, once it is known to be a regular file within limits.max_file_mb.
+std::string read_bytes(const std::string& path, bool binary, const ResourceLimits& limits) {
+  const std::string what = binary ? "binary OctoMap (.bt)" : "full OctoMap (.ot)";
   try {
-    data.resize(static_cast<std::size_t>(bytes));
+    return read_input_file(path, what, limits);
   } catch (const std::bad_alloc&) {
-    fail(path, "not enough memory to read the " + std::to_string(bytes) + "-byte OctoMap file");
+    fail(path, "not enough memory to read the " + what);
   }
-  in.read(data.data(), static_cast<std::streamsize>(bytes));
-  if (static_cast<std::uint64_t>(in.gcount()) != bytes ||
-      in.peek() != std::char_traits<char>::eof()) {
-    fail(path, "could not read the OctoMap file whole (" + std::to_string(bytes) +
-                   " bytes expected; did it change while it was read?)");
-  }
-  return data;
+}
+
+// The tree's memory in octomap and the file's bytes, estimated before either is allocated.
+void check_tree_memory(const std::string& path, std::uint64_t nodes, std::size_t file_bytes,
+                       const ResourceLimits& limits) {
+  const double bytes =
+      kTreeBytesPerNode * static_cast<double>(nodes) + static_cast<double>(file_bytes);
+  check_memory(bytes, limits, path + ": the OctoMap tree of " + std::to_string(nodes) + " nodes");
 }
 
 // Reads the header's tokens from the bytes after the first line.
@@ -168,8 +131,7 @@ std::size_t scan_header(const std::string& path, const std::string& bytes, std::
   return scan.pos();
 }
 
-std::uint64_t parse_size(const std::string& path, const std::optional<std::string>& text,
-                         std::uint64_t max_nodes) {
+std::uint64_t parse_size(const std::string& path, const std::optional<std::string>& text) {
   if (!text) fail(path, "the OctoMap header has no 'size' (the tree's node count)");
   std::uint64_t size = 0;
   const char* end = text->data() + text->size();
@@ -177,10 +139,6 @@ std::uint64_t parse_size(const std::string& path, const std::optional<std::strin
   if (ec != std::errc() || ptr != end || size > std::numeric_limits<std::uint32_t>::max()) {
     fail(path, "the OctoMap header's size '" + shown(*text) +
                    "' is not a node count (a whole number below 2^32)");
-  }
-  if (size > max_nodes) {
-    fail(path, "the OctoMap tree has " + std::to_string(size) +
-                   " nodes, more than max_nodes = " + std::to_string(max_nodes));
   }
   return size;
 }
@@ -214,8 +172,8 @@ std::size_t check_first_line(const std::string& path, const std::string& bytes, 
 
 }  // namespace
 
-OctomapFile read_octomap_file(const std::string& path, bool binary, std::uint64_t max_nodes) {
-  std::string bytes = read_bytes(path, max_nodes);
+OctomapFile read_octomap_file(const std::string& path, bool binary, const ResourceLimits& limits) {
+  std::string bytes = read_bytes(path, binary, limits);
   RawHeader raw;
   const std::size_t data_offset =
       scan_header(path, bytes, check_first_line(path, bytes, binary), raw);
@@ -228,7 +186,8 @@ OctomapFile read_octomap_file(const std::string& path, bool binary, std::uint64_
     fail(path, "holds an OctoMap " + shown(*raw.id) + ", not an OcTree");
   }
   file.id = *raw.id;
-  file.size = parse_size(path, raw.size, max_nodes);
+  file.size = parse_size(path, raw.size);
+  check_tree_memory(path, file.size, bytes.size(), limits);
   file.resolution = parse_resolution(path, raw.res);
   file.data_offset = data_offset;
   bytes.erase(0, data_offset);

@@ -22,8 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Largest 2-D map produced (cells): a guard against a tiny resolution on a large tree.
-constexpr double kMaxCells = 1e8;
 // Tolerance, in leaf or cell units, for comparing voxel faces with band edges and cell edges
 // (voxel faces are integer multiples of the leaf size; band edges are decimal numbers).
 constexpr double kEps = 1e-6;
@@ -57,7 +55,6 @@ void check_slice(const std::string& path, const OctomapSlice& s) {
     fail(path, "OctoMap slice resolution must be positive when given (0 = the tree's), got " +
                    num(s.resolution));
   }
-  if (s.max_nodes == 0) fail(path, "OctoMap max_nodes must be at least 1, got 0");
 }
 
 // octomap's own data readers on the checked bytes, as OcTree::readBinary and
@@ -75,7 +72,7 @@ std::unique_ptr<octomap::OcTree> tree_of(const std::string& path,
     }
   } catch (const std::bad_alloc&) {
     fail(path, "not enough memory for the OctoMap tree of " + std::to_string(file.size) +
-                   " nodes (max_nodes limits it)");
+                   " nodes (--max-memory-mb limits the estimate)");
   }
   if (tree->size() != file.size) {
     fail(path, "octomap read " + std::to_string(tree->size()) + " nodes of the checked " +
@@ -87,15 +84,14 @@ std::unique_ptr<octomap::OcTree> tree_of(const std::string& path,
 // Reads the tree; its kind is told by the extension, and the file is checked whole before
 // octomap reads it, so that a wrong file gets our message rather than octomap's console output
 // or a tree silently cut short.
-std::unique_ptr<octomap::OcTree> read_tree(const std::string& path, const OctomapSlice& slice) {
+std::unique_ptr<octomap::OcTree> read_tree(const std::string& path, const ResourceLimits& limits) {
   const std::string ext = lower_extension(path);
   if (ext != ".bt" && ext != ".ot") {
     fail(path,
          "an OctoMap file must end in .bt (binary tree) or .ot (full tree), not '" + ext + "'");
   }
   const bool binary = ext == ".bt";
-  octomap_detail::OctomapFile file =
-      octomap_detail::read_octomap_file(path, binary, slice.max_nodes);
+  octomap_detail::OctomapFile file = octomap_detail::read_octomap_file(path, binary, limits);
   octomap_detail::check_octomap_data(path, file);
   if (file.size == 0) fail(path, "the OctoMap tree is empty");
   return tree_of(path, std::move(file));
@@ -128,9 +124,11 @@ bool is_octomap_path(const std::string& path) {
   return ext == ".bt" || ext == ".ot";
 }
 
-OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice) {
+OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice,
+                          const ResourceLimits& limits) {
+  limits.validate();
   check_slice(path, slice);
-  const std::unique_ptr<octomap::OcTree> tree = read_tree(path, slice);
+  const std::unique_ptr<octomap::OcTree> tree = read_tree(path, limits);
   const double res = tree->getResolution();
 
   // Pass 1: the bounding box of every known voxel, and whether any overlaps the band.
@@ -166,10 +164,7 @@ OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice) {
   g.yaw = 0.0;
   const double w = std::max(1.0, std::ceil(static_cast<double>(hi[0] - lo[0]) * scale - kEps));
   const double h = std::max(1.0, std::ceil(static_cast<double>(hi[1] - lo[1]) * scale - kEps));
-  if (w * h > kMaxCells) {
-    fail(path, "the 2-D map would have " + num(w * h) + " cells (" + num(w) + " x " + num(h) +
-                   " at " + num(cell) + " m); use a coarser resolution");
-  }
+  check_grid_cells(w, h, limits, path + ": the OctoMap's 2-D map at " + num(cell) + " m");
   g.width = static_cast<int>(w);
   g.height = static_cast<int>(h);
   OccupancyMap map(g, CellState::Unknown);

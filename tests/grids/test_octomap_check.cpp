@@ -283,12 +283,10 @@ TEST_F(OctomapCheck, MalformedNodeDataIsRefused) {
 TEST_F(OctomapCheck, DirectoryIsRefused) {
   const std::string folder = dir_.file("folder.bt");
   std::filesystem::create_directory(folder);
-  EXPECT_EQ(load_error(folder),
-            folder + ": is a directory, not a regular file (an OctoMap .bt/.ot file)");
+  EXPECT_EQ(load_error(folder), folder + ": is a directory, not a binary OctoMap (.bt)");
   const std::string folder_ot = dir_.file("folder.ot");
   std::filesystem::create_directory(folder_ot);
-  EXPECT_EQ(load_error(folder_ot),
-            folder_ot + ": is a directory, not a regular file (an OctoMap .bt/.ot file)");
+  EXPECT_EQ(load_error(folder_ot), folder_ot + ": is a directory, not a full OctoMap (.ot)");
 }
 
 TEST_F(OctomapCheck, HeaderFaultsAreRefused) {
@@ -356,22 +354,35 @@ TEST_F(OctomapCheck, HeaderVariantsOctomapWritesOrAcceptsLoadAlike) {
 }
 
 TEST_F(OctomapCheck, LimitsAreChecked) {
-  OctomapSlice s;
-  s.max_nodes = 50;
-  EXPECT_EQ(load_error(ot_, s), ot_ + ": the OctoMap tree has 51 nodes, more than max_nodes = 50");
-  s.max_nodes = 51;
-  EXPECT_EQ(load_error(ot_, s), "no error");
-  s.max_nodes = std::numeric_limits<std::uint64_t>::max();  // no overflow of the byte limit
-  EXPECT_EQ(load_error(ot_, s), "no error");
-  s.max_nodes = 0;
-  EXPECT_EQ(load_error(ot_, s), ot_ + ": OctoMap max_nodes must be at least 1, got 0");
-  // The file may hold 5 bytes per node and 1 MiB of header: with max_nodes 1, 1 MiB + 6 bytes
-  // is too large, whatever it holds.
-  s.max_nodes = 1;
-  const std::string big = write("big.bt", std::string((1 << 20) + 6, '#'));
-  EXPECT_EQ(load_error(big, s), big +
-                                    ": the OctoMap file is 1048582 bytes, more than a tree of "
-                                    "max_nodes = 1 nodes takes (1048581 bytes)");
+  // The tree's memory, estimated from the header's size before octomap allocates it: 48 bytes
+  // a node, and the file's bytes.
+  ResourceLimits limits;
+  limits.max_memory_mb = 1.0;
+  const std::string huge = write("huge.bt", header(true, "4000000000") + chain_to_one_voxel());
+  EXPECT_EQ(message_of([&] { load_octomap(huge, {}, limits); }),
+            huge +
+                ": the OctoMap tree of 4000000000 nodes would need about: 183106 MB exceeds "
+                "the limit of 1 MB (raise it with --max-memory-mb)");
+  EXPECT_EQ(message_of([&] { load_octomap(ot_, {}, limits); }), "no error");
+  // The file's size.
+  limits = {};
+  limits.max_file_mb = 1.0;
+  const std::string big = write("big.bt", std::string((1 << 20) + 1, '#'));
+  EXPECT_EQ(message_of([&] { load_octomap(big, {}, limits); }),
+            big +
+                ": the binary OctoMap (.bt) is: 2 MB exceeds the limit of 1 MB (raise it with "
+                "--max-file-mb)");
+  // The 2-D map's cells.
+  limits = {};
+  limits.max_cells = 1.0;
+  EXPECT_EQ(message_of([&] { load_octomap(ot_, {}, limits); }),
+            ot_ +
+                ": the OctoMap's 2-D map at 0.1 m (4 x 2): 8 cells exceeds the limit of 1 cells "
+                "(raise it with --max-cells)");
+  // The limits themselves.
+  limits.max_cells = 0.0;
+  EXPECT_EQ(message_of([&] { load_octomap(ot_, {}, limits); }),
+            "resource limit max_cells must be a positive number, got 0");
 }
 
 // octomap's readers print their warnings and errors on stderr (std::cerr and fprintf); the

@@ -257,7 +257,7 @@ TEST_F(OctomapIo, ErrorsNameTheFileAndTheFault) {
 
   const std::string folder = dir_.file("folder.bt");
   std::filesystem::create_directory(folder);
-  expect_error([&] { load_octomap(folder); }, {folder, "not a regular file"});
+  expect_error([&] { load_octomap(folder); }, {folder, "is a directory"});
 
   const std::string yaml = dir_.write("map.yaml", "image: x.pgm\n");
   expect_error([&] { load_octomap(yaml); }, {yaml, ".bt", ".ot", "'.yaml'"});
@@ -310,7 +310,7 @@ TEST_F(OctomapIo, ErrorsNameTheFileAndTheFault) {
                {bt_, "no known voxel overlaps the band z in [5, 6] m", "span z in [-0.1, 1] m"});
   s = {};
   s.resolution = 1e-4;
-  expect_error([&] { load_octomap(bt_, s); }, {bt_, "cells", "coarser resolution"});
+  expect_error([&] { load_octomap(bt_, s); }, {bt_, "2-D map at 0.0001 m", "cells", "--max-cells"});
 }
 
 TEST_F(OctomapIo, TruncatedBinaryTreeIsAnError) {

@@ -1,10 +1,10 @@
 #pragma once
 /// Importing OctoMap trees (`.bt`, `.ot`) as 2-D occupancy maps: the slice of the 3-D map at
 /// the sonars' height, so that a 3-D map serves the same engine as a map_server map.
-#include <cstdint>
 #include <string>
 
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/limits.hpp"
 
 namespace gridloc {
 
@@ -20,10 +20,6 @@ struct OctomapSlice {
   double z_min = 0.1;       ///< lower edge of the band (m)
   double z_max = 0.6;       ///< upper edge of the band (m); must exceed z_min
   double resolution = 0.0;  ///< 2-D cell side (m); 0 = the tree's leaf size
-  /// Largest tree read (nodes, as the file's header counts them); the file may then hold at
-  /// most 5 bytes per node plus 1 MiB of header. octomap takes about 45 bytes per node (a
-  /// room of 1.4 million nodes at 5 cm: 60 MB), so the default, 20 million, stays near 1 GB.
-  std::uint64_t max_nodes = 20'000'000;
 };
 
 /// Loads an OctoMap OcTree and projects the voxels overlapping the band [z_min, z_max] onto a
@@ -44,17 +40,21 @@ struct OctomapSlice {
 /// or not), with its origin at the box's lower-left corner and yaw 0; with the tree's
 /// resolution its cells are exactly the voxel columns.
 ///
+/// Within `limits`: the file's size (max_file_mb), the tree's memory, estimated from the
+/// header's node count before octomap allocates it (max_memory_mb; octomap takes about 45
+/// bytes per node: a room of 1.4 million nodes at 5 cm, 60 MB), the 2-D map's cells (max_cells).
+///
 /// Throws gridloc::Error naming the file for a missing file, a directory or other non-regular
-/// file, an extension other than .bt/.ot, a header that is not octomap's (a wrong first line;
-/// a missing, repeated or unknown keyword; a size that is not a whole number; a res that is
-/// not a leaf size from 1e-6 to 1e6 m), a tree larger than `max_nodes` (or a file larger than
-/// such a tree takes), data that ends before the tree does, holds another number of nodes
-/// than the header's size, reaches below the leaf level, has a .bt inner node without children
-/// or a .ot log-odds that is not finite, bytes after the end of the tree (refused, as octomap's
-/// writers leave none), a tree that is not an OcTree, an empty tree, a bad band (z_min >=
-/// z_max, NaN), a given resolution <= 0 or NaN, a band that holds no known voxel, or a map too
-/// large.
-OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice = {});
+/// file, a file, tree or map over its limit, an extension other than .bt/.ot, a header that is not
+/// octomap's (a wrong first line; a missing, repeated or unknown keyword; a size that is not a
+/// whole number; a res that is not a leaf size from 1e-6 to 1e6 m), data that ends before the tree
+/// does, holds another number of nodes than the header's size, reaches below the leaf level, has a
+/// .bt inner node without children or a .ot log-odds that is not finite, bytes after the end of the
+/// tree (refused, as octomap's writers leave none), a tree that is not an OcTree, an empty tree, a
+/// bad band (z_min >= z_max, NaN), a given resolution <= 0 or NaN, or a band that holds no known
+/// voxel.
+OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice = {},
+                          const ResourceLimits& limits = {});
 
 /// True if `path` names an OctoMap file by its extension (.bt or .ot, any case).
 bool is_octomap_path(const std::string& path);
