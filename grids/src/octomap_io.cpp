@@ -1,6 +1,5 @@
 #include "gridloc/grids/octomap_io.hpp"
 
-#include <octomap/AbstractOcTree.h>
 #include <octomap/OcTree.h>
 
 #include <algorithm>
