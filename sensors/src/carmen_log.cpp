@@ -1,8 +1,8 @@
 #include "gridloc/sensors/carmen_log.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <numbers>
 #include <sstream>
 
@@ -28,11 +28,13 @@ class Fields {
     }
     return value;
   }
-  int count(const std::string& field) {
+  /// A count of beams (readings, remissions): a whole number >= 0, at most limits.max_beams.
+  int count(const std::string& field, const ResourceLimits& limits) {
     const double value = number(field);
-    if (!(value >= 0.0) || value > 100000.0 || value != std::floor(value)) {
-      fail(field + " must be a whole number in [0, 100000], got " + token_at(next_ - 1));
+    if (!(value >= 0.0) || value != std::floor(value)) {
+      fail(field + " must be a whole number >= 0, got " + token_at(next_ - 1));
     }
+    check_limit(value, limits.max_beams, where_ + ": " + field, "beams", LimitNames::beams);
     return static_cast<int>(value);
   }
   Pose2 pose(const std::string& field) {
@@ -93,7 +95,7 @@ std::vector<double> ranges(Fields& fields, int count, double no_return, int& inv
 
 LaserRecord flaser(Fields& fields, const CarmenOptions& options) {
   LaserRecord record;
-  const int count = fields.count("reading count");
+  const int count = fields.count("reading count", options.limits);
   if (count < 2) {
     fields.fail("a FLASER line needs at least 2 readings, got " + std::to_string(count));
   }
@@ -109,7 +111,7 @@ LaserRecord flaser(Fields& fields, const CarmenOptions& options) {
   return record;
 }
 
-LaserRecord robotlaser(Fields& fields) {
+LaserRecord robotlaser(Fields& fields, const ResourceLimits& limits) {
   LaserRecord record;
   fields.number("laser type");
   const double start = fields.number("start angle"), fov = fields.number("field of view");
@@ -123,12 +125,12 @@ LaserRecord robotlaser(Fields& fields) {
   if (!(max_range > 0.0) || !std::isfinite(max_range)) {
     fields.fail("the maximum range must be > 0, got " + std::to_string(max_range));
   }
-  const int count = fields.count("reading count");
+  const int count = fields.count("reading count", limits);
   if (count < 2) {
     fields.fail("a ROBOTLASER1 line needs at least 2 readings, got " + std::to_string(count));
   }
   record.scan.ranges = ranges(fields, count, max_range, record.invalid_ranges);
-  fields.skip(static_cast<std::size_t>(fields.count("remission count")));
+  fields.skip(static_cast<std::size_t>(fields.count("remission count", limits)));
   for (int k = 0; k < count; ++k) record.scan.angles.push_back(start + k * resolution);
   record.scan.max_range = max_range;
   record.laser_pose = fields.pose("laser pose");
@@ -149,6 +151,18 @@ OdometryRecord odom(Fields& fields) {
   return record;
 }
 
+/// The longest line a log within the beam limit can hold: a ROBOTLASER1 line of max_beams
+/// ranges and as many remissions, 64 bytes a number, and the rest of the line.
+std::size_t max_line_bytes(const ResourceLimits& limits) {
+  return static_cast<std::size_t>(4096.0 + 128.0 * std::min(limits.max_beams, 1e9));
+}
+
+/// The bytes a laser record holds: the record, its angles and ranges (their capacity).
+double record_bytes(const LaserRecord& record) {
+  return static_cast<double>(sizeof(LaserRecord)) +
+         8.0 * static_cast<double>(record.scan.angles.capacity() + record.scan.ranges.capacity());
+}
+
 }  // namespace
 
 CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
@@ -157,24 +171,32 @@ CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
     throw Error("CARMEN log options: max_range must be > 0, got " +
                 std::to_string(options.max_range));
   }
+  options.limits.validate();
   CarmenLog log;
-  detail::for_each_word_line(in, [&](const std::vector<std::string>& tokens, std::size_t line) {
-    const std::string& kind = tokens[0];
-    if (kind != "FLASER" && kind != "ROBOTLASER1" && kind != "ODOM") return;
-    Fields fields(tokens, name + ":" + std::to_string(line) + ": " + kind);
-    if (kind == "ODOM") {
-      log.odometry.push_back(odom(fields));
-      log.odometry.back().line = line;
-    } else {
-      log.lasers.push_back(kind == "FLASER" ? flaser(fields, options) : robotlaser(fields));
-      log.lasers.back().line = line;
-    }
-  });
+  double bytes = 0.0;  // of the records kept so far, checked as they grow
+  detail::for_each_word_line(
+      in, name, max_line_bytes(options.limits),
+      [&](const std::vector<std::string>& tokens, std::size_t line) {
+        const std::string& kind = tokens[0];
+        if (kind != "FLASER" && kind != "ROBOTLASER1" && kind != "ODOM") return;
+        Fields fields(tokens, name + ":" + std::to_string(line) + ": " + kind);
+        if (kind == "ODOM") {
+          log.odometry.push_back(odom(fields));
+          log.odometry.back().line = line;
+          bytes += sizeof(OdometryRecord);
+        } else {
+          log.lasers.push_back(kind == "FLASER" ? flaser(fields, options)
+                                                : robotlaser(fields, options.limits));
+          log.lasers.back().line = line;
+          bytes += record_bytes(log.lasers.back());
+        }
+        check_memory(bytes, options.limits, name + ": the log's records");
+      });
   return log;
 }
 
 CarmenLog load_carmen_log(const std::string& path, const CarmenOptions& options) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": CARMEN log not found");
+  check_input_file(path, "CARMEN log", options.limits);
   if (options.max_decompressed_bytes == 0) {
     throw Error("CARMEN log options: max_decompressed_bytes must be > 0");
   }

@@ -13,6 +13,9 @@
 namespace gridloc {
 namespace {
 
+/// Bytes per cell while drawing: two uint16 beam counts and the map's state.
+constexpr double kBytesPerCell = 5.0;
+
 /// A number as the messages print it.
 std::string number(double value) {
   std::ostringstream out;
@@ -102,7 +105,8 @@ void for_each_beam(const std::vector<LaserRecord>& lasers, const std::vector<std
 }
 
 /// The grid spanning the first scan's laser position and every drawn beam plus the margin; throws
-/// gridloc::Error when it would hold more than options.max_cells cells.
+/// gridloc::Error when it would hold more than options.limits.max_cells cells or need more than
+/// options.limits.max_memory_mb.
 GridGeometry grid_for(const std::vector<LaserRecord>& lasers,
                       const std::vector<std::size_t>& indices, const LogMapOptions& options) {
   const Eigen::Vector2d first(lasers[indices.front()].laser_pose.x,
@@ -115,12 +119,10 @@ GridGeometry grid_for(const std::vector<LaserRecord>& lasers,
   const Eigen::Vector2d size_m = (hi - lo).array() + 2.0 * options.margin_m;
   const double width = std::ceil(size_m.x() / options.resolution) + 1.0;
   const double height = std::ceil(size_m.y() / options.resolution) + 1.0;
-  if (width * height > static_cast<double>(options.max_cells)) {
-    throw Error("map from log: the map would be " + number(width) + " x " + number(height) +
-                " cells (" + number(size_m.x()) + " m x " + number(size_m.y()) + " m at " +
-                number(options.resolution) +
-                " m), more than max_cells = " + std::to_string(options.max_cells));
-  }
+  const std::string what = "map from log: the map of " + number(size_m.x()) + " m x " +
+                           number(size_m.y()) + " m at " + number(options.resolution) + " m";
+  const double cells = check_grid_cells(width, height, options.limits, what);
+  check_memory(kBytesPerCell * cells, options.limits, what);
   GridGeometry g;
   g.resolution = options.resolution;
   g.origin = lo.array() - options.margin_m;
@@ -190,7 +192,7 @@ void validate(const LogMapOptions& options) {
     throw Error("map from log: occupied_ratio must be in (0, 1], got " +
                 number(options.occupied_ratio));
   }
-  if (options.max_cells == 0) throw Error("map from log: max_cells must be > 0");
+  options.limits.validate();
 }
 
 OccupancyMap map_from_log(const std::vector<LaserRecord>& lasers,

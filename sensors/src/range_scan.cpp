@@ -2,16 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "canvas.hpp"
 #include "gridloc/grids/error.hpp"
+#include "text_lines.hpp"
 
 namespace gridloc {
 namespace {
+
+/// The longest line of a scan CSV: an `angle,range` line with a comment is far shorter.
+constexpr std::size_t kMaxScanLineBytes = 64 * 1024;
 
 /// Cells crossed by the segment from (x0, y0) to (x1, y1), in cell units with cell (i, j)
 /// covering [i - 0.5, i + 0.5) x [j - 0.5, j + 0.5) (the robot centre is a cell centre);
@@ -70,13 +73,15 @@ void validate(const RangeScan& scan) {
   }
 }
 
-RangeScan load_scan_csv(const std::string& path, double max_range) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": scan file not found");
-  std::ifstream in(path);
+RangeScan load_scan_csv(const std::string& path, double max_range, const ResourceLimits& limits) {
+  check_input_file(path, "scan file", limits);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the scan file for reading");
   RangeScan scan;
   scan.max_range = max_range;
   std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
+  for (std::size_t number = 1; detail::read_bounded_line(in, line, kMaxScanLineBytes, path, number);
+       ++number) {
     const auto hash = line.find('#');
     if (hash != std::string::npos) line.erase(hash);
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -87,6 +92,10 @@ RangeScan load_scan_csv(const std::string& path, double max_range) {
     if (!(fields >> angle >> range) || (fields >> rest)) {
       throw Error(path + ":" + std::to_string(number) + ": expected 'angle_rad,range_m'");
     }
+    // Checked before the beam is kept: a huge scan stops here, not after it is read.
+    check_limit(static_cast<double>(scan.ranges.size() + 1), limits.max_beams,
+                path + ":" + std::to_string(number) + ": beams of the scan", "beams",
+                LimitNames::beams);
     scan.angles.push_back(angle);
     scan.ranges.push_back(range);
   }

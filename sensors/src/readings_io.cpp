@@ -1,7 +1,6 @@
 #include "gridloc/sensors/readings_io.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -12,11 +11,23 @@ namespace gridloc {
 
 namespace {
 
-nlohmann::json parse_file(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": readings file not found");
-  std::ifstream in(path);
+/// Parses the file, counting its JSON values as they are read: more than limits.max_beams
+/// (a readings file is one observation, its firings included) stops the parse there, so a
+/// huge array never becomes a huge document.
+nlohmann::json parse_file(const std::string& path, const ResourceLimits& limits) {
+  check_input_file(path, "readings file", limits);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the readings file for reading");
+  double values = 0.0;
+  const auto count_values = [&](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if (event == nlohmann::json::parse_event_t::value) {
+      check_limit(++values, limits.max_beams, path + ": values in the readings file", "values",
+                  LimitNames::beams);
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(in, count_values);
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": malformed JSON: " + e.what());
   }
@@ -41,16 +52,17 @@ std::vector<double> ranges_of(const nlohmann::json& array, const std::string& pa
 
 }  // namespace
 
-std::vector<double> load_readings(const std::string& path) {
-  const nlohmann::json j = parse_file(path);
+std::vector<double> load_readings(const std::string& path, const ResourceLimits& limits) {
+  const nlohmann::json j = parse_file(path, limits);
   if (!j.is_object() || !j.contains("ranges_m") || !j["ranges_m"].is_array()) {
     throw Error(path + ": expected an object with an array 'ranges_m'");
   }
   return ranges_of(j["ranges_m"], path, "ranges_m");
 }
 
-std::vector<std::vector<double>> load_firings(const std::string& path) {
-  const nlohmann::json j = parse_file(path);
+std::vector<std::vector<double>> load_firings(const std::string& path,
+                                              const ResourceLimits& limits) {
+  const nlohmann::json j = parse_file(path, limits);
   if (j.is_object() && j.contains("firings_m")) {
     const nlohmann::json& f = j["firings_m"];
     if (!f.is_array() || f.empty() ||

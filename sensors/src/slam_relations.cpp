@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -12,29 +11,34 @@
 
 namespace gridloc {
 
-std::vector<SlamRelation> load_slam_relations(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": relations file not found");
-  std::ifstream in(path);
+std::vector<SlamRelation> load_slam_relations(const std::string& path,
+                                              const ResourceLimits& limits) {
+  check_input_file(path, "relations file", limits);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot read the relations file");
   std::vector<SlamRelation> out;
-  detail::for_each_word_line(in, [&](const std::vector<std::string>& tokens, std::size_t line) {
-    const std::string where = path + ":" + std::to_string(line);
-    if (tokens.size() < 8) {
-      throw Error(where + ": a relation needs 8 numbers (t1 t2 x y z roll pitch yaw), got " +
-                  std::to_string(tokens.size()));
-    }
-    double v[8];
-    for (std::size_t k = 0; k < 8; ++k) {
-      const std::string& t = tokens[k];
-      char* end = nullptr;
-      v[k] = std::strtod(t.c_str(), &end);
-      if (end != t.c_str() + t.size() || !std::isfinite(v[k])) {
-        throw Error(where + ": field " + std::to_string(k + 1) + " is not a finite number: '" + t +
-                    "'");
-      }
-    }
-    out.push_back({v[0], v[1], Pose2{v[2], v[3], v[7]}, line});
-  });
+  constexpr std::size_t kMaxLineBytes = 64 * 1024;  // 8 numbers, and what may follow them
+  detail::for_each_word_line(
+      in, path, kMaxLineBytes, [&](const std::vector<std::string>& tokens, std::size_t line) {
+        const std::string where = path + ":" + std::to_string(line);
+        if (tokens.size() < 8) {
+          throw Error(where + ": a relation needs 8 numbers (t1 t2 x y z roll pitch yaw), got " +
+                      std::to_string(tokens.size()));
+        }
+        double v[8];
+        for (std::size_t k = 0; k < 8; ++k) {
+          const std::string& t = tokens[k];
+          char* end = nullptr;
+          v[k] = std::strtod(t.c_str(), &end);
+          if (end != t.c_str() + t.size() || !std::isfinite(v[k])) {
+            throw Error(where + ": field " + std::to_string(k + 1) + " is not a finite number: '" +
+                        t + "'");
+          }
+        }
+        out.push_back({v[0], v[1], Pose2{v[2], v[3], v[7]}, line});
+        check_memory(static_cast<double>(out.capacity() * sizeof(SlamRelation)), limits,
+                     path + ": the relations");
+      });
   return out;
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -134,11 +133,11 @@ void validate_readings(const SonarRing& ring, const std::vector<double>& ranges,
   }
 }
 
-static SonarRing parse_sonar_ring(const std::string& yaml_path) {
-  if (!std::filesystem::exists(yaml_path)) fail(yaml_path, "sonar ring file not found");
+static SonarRing parse_sonar_ring(const std::string& yaml_path, const ResourceLimits& limits) {
+  const std::string text = read_input_file(yaml_path, "sonar ring file", limits);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(yaml_path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     fail(yaml_path, std::string("malformed YAML: ") + e.what());
   }
@@ -159,6 +158,8 @@ static SonarRing parse_sonar_ring(const std::string& yaml_path) {
   if (!root["sonars"] || !root["sonars"].IsSequence()) {
     fail(yaml_path, "key 'sonars' must be a list");
   }
+  check_limit(static_cast<double>(root["sonars"].size()), limits.max_beams, yaml_path + ": sonars",
+              "sonars", LimitNames::beams);
   int i = 0;
   for (const auto& node : root["sonars"]) {
     const std::string w = yaml_path + ": sonars[" + std::to_string(i++) + "]";
@@ -180,6 +181,8 @@ static SonarRing parse_sonar_ring(const std::string& yaml_path) {
   if (root["footprint"]) {
     const auto fp = root["footprint"];
     if (!fp.IsSequence()) fail(yaml_path, "key 'footprint' must be a list of [x, y] points");
+    check_limit(static_cast<double>(fp.size()), limits.max_vertices, yaml_path + ": footprint",
+                "vertices", LimitNames::vertices);
     for (const auto& p : fp) ring.footprint.polygon.push_back(point(p, yaml_path + ": footprint"));
   }
   try {
@@ -190,9 +193,9 @@ static SonarRing parse_sonar_ring(const std::string& yaml_path) {
   return ring;
 }
 
-SonarRing load_sonar_ring(const std::string& yaml_path) {
+SonarRing load_sonar_ring(const std::string& yaml_path, const ResourceLimits& limits) {
   try {
-    return parse_sonar_ring(yaml_path);
+    return parse_sonar_ring(yaml_path, limits);
   } catch (const YAML::Exception& e) {
     // Conversions not caught field by field (e.g. a non-scalar key or name) name the file.
     fail(yaml_path, std::string("invalid sonar ring YAML: ") + e.what());

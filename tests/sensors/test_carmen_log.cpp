@@ -241,3 +241,39 @@ TEST(CarmenLog, ReadsTheLaserazosLog) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Issue 14: the file is checked where it enters (plain or gzip), declared beam counts against
+// max_beams before any range is read, and the records against max_memory_mb as they grow.
+TEST(CarmenLog, InputLimits) {
+  test::TempDir dir;
+  test::expect_error([&] { load_carmen_log(dir.path().string()); },
+                     {dir.path().string(), "is a directory", "CARMEN log"});
+  const std::string plain = dir.write("log", kExcerpt);
+  const std::string gz = dir.write("log.gz", gzip(kExcerpt, dir));
+  CarmenOptions options;
+  options.limits.max_file_mb = 1e-6;
+  for (const std::string& p : {plain, gz}) {
+    test::expect_error([&] { load_carmen_log(p, options); }, {p, "--max-file-mb"});
+  }
+  options = {};
+  options.limits.max_beams = 3;  // the excerpt's second scan has 4
+  test::expect_error([&] { load_carmen_log(gz, options); },
+                     {gz, ":4: FLASER", "reading count", "4 beams", "--max-beams"});
+  // A declared count far beyond the line is refused before anything is reserved for it.
+  std::istringstream huge("FLASER 1000000000 1 2\n");
+  test::expect_error([&] { parse_carmen_log(huge, "huge.log"); },
+                     {"huge.log:1", "1e+09 beams", "--max-beams"});
+  std::istringstream remissions(
+      "ROBOTLASER1 0 -1.5 3.1 0.01 80 0.1 0 2 1 1 200000 0 0 0 0 0 0 0 0 0 0 0 0 5 h 5\n");
+  test::expect_error([&] { parse_carmen_log(remissions, "r.log"); },
+                     {"remission count", "--max-beams"});
+  options = {};
+  options.limits.max_memory_mb = 1e-6;
+  test::expect_error([&] { load_carmen_log(plain, options); }, {plain, "--max-memory-mb"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -305,21 +305,25 @@ TEST(LogMap, BadInputAndOptions) {
   expect_option_error([](LogMapOptions& o) { o.min_passes = 70000; }, "min_passes");
   expect_option_error([](LogMapOptions& o) { o.occupied_ratio = 0; }, "occupied_ratio");
   expect_option_error([](LogMapOptions& o) { o.occupied_ratio = 1.5; }, "occupied_ratio");
-  expect_option_error([](LogMapOptions& o) { o.max_cells = 0; }, "max_cells");
+  expect_option_error([](LogMapOptions& o) { o.limits.max_cells = 0; }, "max_cells");
   // The cap is checked before anything is allocated, and the message gives the size.
   LogMapOptions small;
-  small.max_cells = 10000;
-  test::expect_error([&] { map_from_log(log, every(log.size()), small); },
-                     {"would be", "cells", "m x", "max_cells = 10000"});
+  small.limits.max_cells = 10000;
+  test::expect_error(
+      [&] { map_from_log(log, every(log.size()), small); },
+      {"map from log", "cells exceeds the limit of 10000 cells", "m x", "--max-cells"});
   LogMapOptions fine;
   fine.resolution = 1e-4;  // 12 m at 0.1 mm: 1.4e10 cells
-  test::expect_error([&] { map_from_log(log, every(log.size()), fine); }, {"max_cells"});
+  test::expect_error([&] { map_from_log(log, every(log.size()), fine); }, {"--max-cells"});
+  LogMapOptions tight;
+  tight.limits.max_memory_mb = 0.001;  // the cells fit, the memory does not
+  test::expect_error([&] { map_from_log(log, every(log.size()), tight); }, {"--max-memory-mb"});
   LaserRecord far;
   far.scan = {{0.0}, {15.0}, 80.0};
   far.laser_pose = {1e9, 0, 0};  // a wild pose beside a sane one
   std::vector<LaserRecord> wild = log;
   wild.push_back(far);
-  test::expect_error([&] { map_from_log(wild, {0, wild.size() - 1}); }, {"max_cells"});
+  test::expect_error([&] { map_from_log(wild, {0, wild.size() - 1}); }, {"--max-cells"});
 }
 
 // A real building: the Intel lab's corrected log, its map part drawn.

@@ -376,3 +376,28 @@ TEST(RangeScanCanvasCollect, WideCanvasNeedsThreeRadixPasses) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Issue 14: a directory is not an empty scan, and the beams are counted while reading.
+TEST(RangeScanErrors, CsvLimits) {
+  test::TempDir dir;
+  test::expect_error([&] { load_scan_csv(dir.path().string(), 8.0); },
+                     {dir.path().string(), "is a directory", "scan file"});
+  const std::string p = dir.write("s.csv", "0,1\n0.1,1\n0.2,1\n");
+  ResourceLimits two;
+  two.max_beams = 2;
+  test::expect_error([&] { load_scan_csv(p, 8.0, two); },
+                     {"s.csv:3", "3 beams", "limit of 2 beams", "--max-beams"});
+  two.max_beams = 3;
+  EXPECT_EQ(load_scan_csv(p, 8.0, two).ranges.size(), 3u);
+  ResourceLimits tiny_file;
+  tiny_file.max_file_mb = 1e-6;
+  test::expect_error([&] { load_scan_csv(p, 8.0, tiny_file); }, {p, "--max-file-mb"});
+  const std::string long_line = dir.write("long.csv", "0," + std::string(100000, '1') + "\n");
+  test::expect_error([&] { load_scan_csv(long_line, 8.0); }, {"long.csv:1", "longer than"});
+}
+
+}  // namespace
+}  // namespace gridloc

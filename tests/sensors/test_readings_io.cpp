@@ -66,3 +66,28 @@ TEST(ReadingsIo, Errors) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Issue 14: the file is checked where it enters, and the values are counted while parsing.
+TEST(ReadingsIoLimits, DirectoriesLargeFilesAndTooManyValuesAreNamed) {
+  TempDir dir;
+  expect_error([&] { load_readings(dir.path().string()); },
+               {dir.path().string(), "is a directory", "readings file"});
+  expect_error([&] { load_firings(dir.path().string()); }, {"is a directory"});
+  const std::string p = dir.write("r.json", R"({"ranges_m": [1, 2, 3]})");
+  ResourceLimits tiny_file;
+  tiny_file.max_file_mb = 1e-6;
+  expect_error([&] { load_readings(p, tiny_file); }, {p, "--max-file-mb"});
+  ResourceLimits three;
+  three.max_beams = 3;
+  EXPECT_EQ(load_readings(p, three).size(), 3u);
+  const std::string four = dir.write("four.json", R"({"ranges_m": [1, 2, 3, 4]})");
+  expect_error([&] { load_readings(four, three); }, {four, "4 values", "--max-beams"});
+  const std::string firings = dir.write("f.json", R"({"firings_m": [[1, 2], [3, 4]]})");
+  expect_error([&] { load_firings(firings, three); }, {firings, "--max-beams"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -98,3 +98,25 @@ TEST(SlamRelations, PairsTheIntelRelationsWithItsScans) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Issue 14: the file is checked where it enters; a line cannot grow without end.
+TEST(SlamRelations, InputLimits) {
+  test::TempDir dir;
+  test::expect_error([&] { load_slam_relations(dir.path().string()); },
+                     {dir.path().string(), "is a directory", "relations file"});
+  const std::string p = dir.write("r.relations", "1 2 3 4 5 6 7 8\n");
+  ResourceLimits tiny_file;
+  tiny_file.max_file_mb = 1e-6;
+  test::expect_error([&] { load_slam_relations(p, tiny_file); }, {p, "--max-file-mb"});
+  ResourceLimits tiny_memory;
+  tiny_memory.max_memory_mb = 1e-6;
+  test::expect_error([&] { load_slam_relations(p, tiny_memory); }, {p, "--max-memory-mb"});
+  const std::string long_line = dir.write("long.relations", std::string(70000, '1'));
+  test::expect_error([&] { load_slam_relations(long_line); }, {"long.relations:1", "longer than"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -232,3 +232,32 @@ TEST_F(Readings, BelowMinRange) {
 
 }  // namespace
 }  // namespace gridloc
+
+namespace gridloc {
+namespace {
+
+// Issue 14: a directory or a huge file is named; sonars and footprint points are limited.
+TEST(SonarRingErrors, Limits) {
+  TempDir dir;
+  expect_error([&] { load_sonar_ring(dir.path().string()); },
+               {dir.path().string(), "is a directory", "sonar ring file"});
+  const std::string p =
+      dir.write("r.yaml",
+                "sonars:\n"
+                "  - {bearing_deg: 0, radius_m: 0.2, heading_deg: 0}\n"
+                "  - {bearing_deg: 90, radius_m: 0.2, heading_deg: 90}\n"
+                "footprint: [[0.3, 0.3], [-0.3, 0.3], [-0.3, -0.3], [0.3, -0.3]]\n");
+  EXPECT_EQ(load_sonar_ring(p).sonars.size(), 2u);
+  ResourceLimits one_sonar;
+  one_sonar.max_beams = 1;
+  expect_error([&] { load_sonar_ring(p, one_sonar); }, {p, "2 sonars", "--max-beams"});
+  ResourceLimits three_vertices;
+  three_vertices.max_vertices = 3;
+  expect_error([&] { load_sonar_ring(p, three_vertices); }, {p, "footprint", "--max-vertices"});
+  ResourceLimits tiny_file;
+  tiny_file.max_file_mb = 1e-6;
+  expect_error([&] { load_sonar_ring(p, tiny_file); }, {p, "--max-file-mb"});
+}
+
+}  // namespace
+}  // namespace gridloc

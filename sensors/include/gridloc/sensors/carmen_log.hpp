@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 
 namespace gridloc {
@@ -20,6 +21,10 @@ struct CarmenOptions {
   /// gzip file), so a bad file cannot fill the memory: 2 GiB, 200 times the largest log of
   /// ../shared/datasets (freiburg-079, 9.5 MB).
   std::size_t max_decompressed_bytes = std::size_t{2} << 30;
+  /// The file (max_file_mb, compressed size for a gzip), each line's reading and remission
+  /// counts (max_beams) and the records read so far (max_memory_mb: 16 bytes a beam plus
+  /// each record) are checked against these while reading: a bad log stops where it goes over.
+  ResourceLimits limits;
 };
 
 /// One laser scan of the log.
@@ -50,7 +55,9 @@ struct CarmenLog {
 
 /// Parses a CARMEN log from `in`; `name` names it in errors. Throws gridloc::Error naming the
 /// line and field for a malformed FLASER / ROBOTLASER1 / ODOM line (too few fields, a field
-/// that is not a number, a reading count that does not match, a negative range). A NaN or
+/// that is not a number, a reading count that does not match, a negative range), a reading
+/// count over options.limits.max_beams, a line longer than such a scan needs, or records
+/// over options.limits.max_memory_mb. A NaN or
 /// infinite range, which real logs use for an invalid beam, reads as no return (counted in
 /// LaserRecord::invalid_ranges).
 ///
@@ -62,8 +69,9 @@ CarmenLog parse_carmen_log(std::istream& in, const std::string& name,
                            const CarmenOptions& options = {});
 
 /// parse_carmen_log of a file, plain or gzip-compressed (`.log.gz`, recognised by its content,
-/// not its name). Throws gridloc::Error naming the file when it is missing or unreadable, when
-/// its gzip data are corrupt or truncated, or when it holds more than
+/// not its name). Throws gridloc::Error naming the file when it is missing or unreadable, a
+/// directory or device, over options.limits.max_file_mb, when its gzip data are corrupt or
+/// truncated, or when it holds more than
 /// options.max_decompressed_bytes of text.
 CarmenLog load_carmen_log(const std::string& path, const CarmenOptions& options = {});
 

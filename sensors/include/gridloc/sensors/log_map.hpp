@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 
 namespace gridloc {
@@ -32,10 +33,11 @@ struct LogMapOptions {
   /// A cell that is not Occupied is Free when at least min_passes beams crossed it, else
   /// Unknown.
   int min_passes = 1;
-  /// The map may hold at most this many cells (5 bytes each while drawing: 500 MB at the
-  /// default; the largest of acschaefer_ple, freiburg-campus at 5 cm, has 22 million), so
-  /// that a log with a wild pose cannot eat the memory.
-  std::size_t max_cells = 100'000'000;
+  /// The map may hold at most limits.max_cells cells, and need at most limits.max_memory_mb
+  /// while drawing (5 bytes a cell: 250 MB at the default 50 M cells; the largest of
+  /// acschaefer_ple, freiburg-campus at 5 cm, has 22 million), so that a log with a wild pose
+  /// cannot eat the memory.
+  ResourceLimits limits;
 };
 
 /// Checks `options`; throws gridloc::Error naming the field.
@@ -45,8 +47,8 @@ void validate(const LogMapOptions& options);
 /// beams (and the first scan's laser position) plus options.margin_m, in the log's frame
 /// (yaw 0). Throws gridloc::Error for no index, an index out of range, a laser pose that is not
 /// finite, a scan that fails validate() (a scan without any return is accepted: it draws
-/// nothing by default), a map that would exceed options.max_cells (the message gives its
-/// size), or bad options.
+/// nothing by default), a map that would exceed options.limits.max_cells or max_memory_mb
+/// (the message gives its size), or bad options.
 OccupancyMap map_from_log(const std::vector<LaserRecord>& lasers,
                           const std::vector<std::size_t>& indices,
                           const LogMapOptions& options = {});

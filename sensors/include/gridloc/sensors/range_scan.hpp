@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 
 namespace gridloc {
@@ -27,8 +28,12 @@ struct RangeScan {
 void validate(const RangeScan& scan);
 
 /// Reads `angle_rad,range_m` lines (`#` starts a comment; blank lines are skipped), the format
-/// of ../shared/bench-cases. Throws gridloc::Error naming the file and line.
-RangeScan load_scan_csv(const std::string& path, double max_range);
+/// of ../shared/bench-cases. Throws gridloc::Error naming the file and line; also for a
+/// missing file, a directory or device, a file over limits.max_file_mb, a line over 64 KiB
+/// and a scan of more than limits.max_beams beams (checked line by line: reading stops at the
+/// first beam over the limit).
+RangeScan load_scan_csv(const std::string& path, double max_range,
+                        const ResourceLimits& limits = {});
 
 /// Which cells of a beam the local grid marks. Every model marks a beam's end cell +1 (a cell
 /// hit by several beams stays +1; end cells beat free cells); Rays and Samples also give the

@@ -6,14 +6,19 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/grids/limits.hpp"
+
 namespace gridloc {
 
-/// Loads the ranges of a readings file; throws gridloc::Error for a missing or malformed file.
-/// The values are checked against a ring by validate_readings().
-std::vector<double> load_readings(const std::string& path);
+/// Loads the ranges of a readings file; throws gridloc::Error for a missing or malformed file,
+/// a directory or device, a file over limits.max_file_mb, or one holding more than
+/// limits.max_beams JSON values in all (counted while parsing: the parse stops there). The
+/// values are checked against a ring by validate_readings().
+std::vector<double> load_readings(const std::string& path, const ResourceLimits& limits = {});
 
 /// Loads every firing of a readings file: the `firings_m` arrays, or `ranges_m` as a single
-/// firing. Throws gridloc::Error for a missing or malformed file, or one with neither key.
-std::vector<std::vector<double>> load_firings(const std::string& path);
+/// firing. Throws gridloc::Error as load_readings does, and for a file with neither key.
+std::vector<std::vector<double>> load_firings(const std::string& path,
+                                              const ResourceLimits& limits = {});
 
 }  // namespace gridloc

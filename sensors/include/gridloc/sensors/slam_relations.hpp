@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 
 namespace gridloc {
@@ -17,8 +18,11 @@ struct SlamRelation {
 };
 
 /// Reads a relations file; throws gridloc::Error naming the line for fewer than 8 numbers,
-/// a field that is not a number or not finite, and for a missing file.
-std::vector<SlamRelation> load_slam_relations(const std::string& path);
+/// a field that is not a number or not finite, a line over 64 KiB, and for a missing file, a
+/// directory or device, a file over limits.max_file_mb or relations over
+/// limits.max_memory_mb.
+std::vector<SlamRelation> load_slam_relations(const std::string& path,
+                                              const ResourceLimits& limits = {});
 
 /// A relation whose two times fall on scans of a log.
 struct RelationPair {

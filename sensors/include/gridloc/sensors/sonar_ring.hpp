@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/grids/limits.hpp"
+
 namespace gridloc {
 
 /// One sonar: mounted at polar position (bearing, radius) about the robot centre, its axis
@@ -33,8 +35,10 @@ struct SonarRing {
 };
 
 /// Loads a ring from YAML (see maps/sensors/). Unknown keys, wrong types and impossible
-/// values throw gridloc::Error naming the file and field.
-SonarRing load_sonar_ring(const std::string& yaml_path);
+/// values throw gridloc::Error naming the file and field; so do a missing file, a directory
+/// or device, a file over limits.max_file_mb, more sonars than limits.max_beams and a
+/// footprint of more than limits.max_vertices points.
+SonarRing load_sonar_ring(const std::string& yaml_path, const ResourceLimits& limits = {});
 
 /// Checks a ring built in code; throws gridloc::Error naming the sonar and field.
 void validate(const SonarRing& ring);
