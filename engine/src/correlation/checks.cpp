@@ -49,6 +49,29 @@ void check(const CorrelationOptions& options) {
     throw Error("correlation options: threads must be in [1, 256], got " +
                 std::to_string(options.threads));
   }
+  options.limits.validate();
+}
+
+void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
+                     const SearchSize& search) {
+  const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
+  for (int l = 0; l < built; ++l) {
+    const double res = options.resolution * static_cast<double>(1 << l);
+    const GlobalGridSize size = global_grid_size(map, res, reach);
+    std::ostringstream what;
+    what << "correlation estimator: the global grid at " << res << " m";
+    check_grid_cells(size.width, size.height, options.limits, what.str());
+    check_grid_cells(size.width + 2.0 * size.pad, size.height + 2.0 * size.pad, options.limits,
+                     what.str() + " padded by the reach");
+  }
+  std::ostringstream what;
+  what << "correlation estimator: the grids of a " << map.width * map.resolution << " x "
+       << map.height * map.resolution << " m map at " << options.resolution << " m";
+  if (search.headings > 0.0) {
+    what << " and a search of " << search.translations << " cells x " << search.headings
+         << " headings";
+  }
+  check_memory(correlation_memory_bytes(map, options, reach, search), options.limits, what.str());
 }
 
 /// What the global grids' padding covers (m): options.reach_m or the ring's reach, whichever

@@ -1,6 +1,7 @@
 #pragma once
 // The correlation estimator's checks of its options and observations (internal).
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/correlation/memory.hpp"
 
 namespace gridloc::correlation_detail {
 
@@ -9,6 +10,12 @@ void check(const CorrelationOptions& options);
 
 /// What the global grids' padding covers (m); throws gridloc::Error for a bad reach.
 double padding_reach(const CorrelationOptions& options, const SonarRing& ring);
+
+/// Checks the cells of every global grid the options build for `map` (reach `reach` m) and
+/// the memory they and a search of size `search` need (correlation_memory_bytes) against
+/// options.limits, before anything is allocated; throws gridloc::Error naming the limit.
+void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
+                     const SearchSize& search = {});
 
 /// Checks the observation is sonar readings for `ring` or a scan within `reach`, not both.
 void check_observation(const Observation& observation, const SonarRing& ring, double reach);

@@ -32,6 +32,29 @@ std::optional<ScanPoints> rigid_points(const Observation& observation,
   return std::nullopt;
 }
 
+/// The size of a search of `lattice` on `finest`, for its memory check: one heading's local
+/// grid is made to count its cells (a rigid scan's points are counted as they are). An
+/// exhaustive or multiresolution search (`strategy`) keeps the poses it scores (Multires
+/// every pose of its coarsest level), a score volume (`volume`) every pose.
+SearchSize search_size(const Lattice& lattice, const SearchLevel& finest, SearchStrategy strategy,
+                       int levels, bool volume) {
+  SearchSize size;
+  size.translations = static_cast<double>(lattice.x1 - lattice.x0 + 1) *
+                      static_cast<double>(lattice.y1 - lattice.y0 + 1);
+  size.headings = lattice.headings;
+  if (finest.points != nullptr) {
+    size.local_cells = size.point_cells = static_cast<double>(finest.points->size());
+  } else {
+    size.local_cells =
+        static_cast<double>(finest.make_local(lattice.theta(0), Eigen::Vector2d::Zero()).size());
+  }
+  size.every_pose = volume || strategy != SearchStrategy::BranchAndBound;
+  if (!volume && strategy == SearchStrategy::Multires) {
+    size.translations /= std::pow(4.0, levels - 1);
+  }
+  return size;
+}
+
 /// Milliseconds since `start`.
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -216,6 +239,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   check(options_);
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
   reach_ = padding_reach(options_, ring_);
+  check_resources(map_.geometry, options_, reach_);  // before any grid is allocated
   // Only the multiresolution search reads the coarser levels.
   const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < built; ++l) {
@@ -253,6 +277,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   const std::vector<SearchLevel> levels =
       search_levels(observation, points ? &*points : nullptr, level_count);
+  check_resources(map_.geometry, options_, reach_,
+                  search_size(lattice, levels.front(), options_.strategy, level_count, false));
   WindowSearch search(lattice, levels, pyramid_);
   search_lattice(search, options_);
   const LatticePose& best = search.result.best;
@@ -307,6 +333,8 @@ ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
   const double res = options_.resolution;
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
   const SearchLevel level = search_levels(observation, points ? &*points : nullptr, 1).front();
+  check_resources(map_.geometry, options_, reach_,
+                  search_size(lattice, level, SearchStrategy::Exhaustive, 1, true));
   const SearchResult r = search_exhaustive(lattice, level);
   ScoreVolume v;
   v.nx = lattice.x1 - lattice.x0 + 1;

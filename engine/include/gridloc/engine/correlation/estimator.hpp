@@ -8,6 +8,7 @@
 #include "gridloc/engine/correlation/search.hpp"
 #include "gridloc/engine/estimator.hpp"
 #include "gridloc/grids/evidence.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/sonar_model.hpp"
 #include "gridloc/sensors/sonar_ring.hpp"
@@ -68,6 +69,10 @@ struct CorrelationOptions {
   VerdictOptions verdict;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct
+  /// The cells of every global grid (max_cells) and the memory of the grids and of each
+  /// search (max_memory_mb, correlation_memory_bytes in memory.hpp) are checked against these
+  /// before they are allocated: a fine resolution on a large map is an error, not a crash.
+  ResourceLimits limits;
 };
 
 /// Every lattice pose of a window scored (the exhaustive search's volume): for heatmaps,
@@ -98,12 +103,15 @@ struct ScoreVolume {
 
 class CorrelationEstimator final : public Estimator {
  public:
-  /// Precomputes the global grid of every level; throws gridloc::Error for bad options or ring.
+  /// Precomputes the global grid of every level; throws gridloc::Error for bad options or ring,
+  /// and for grids over options.limits (checked before they are allocated).
   CorrelationEstimator(OccupancyMap map, SonarRing ring, CorrelationOptions options = {});
   /// An estimator for scans only (no sonar ring); options.reach_m must cover the scans' range.
   CorrelationEstimator(OccupancyMap map, CorrelationOptions options);
 
   /// window.step_xy must equal options().resolution (the translation lattice is the grid).
+  /// The search's memory (its headings' local grids) is checked against options().limits
+  /// before the search (gridloc::Error naming --max-memory-mb).
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
   /// The same, reporting up to `hypotheses` distinct poses (>= 1) instead of
   /// options().hypotheses: a global search that seeds a HypothesisSet asks for more.
@@ -119,7 +127,7 @@ class CorrelationEstimator final : public Estimator {
   SearchWindow global_window(const Observation& observation) const;
 
   /// Scores every lattice pose of `window` (an exhaustive search, whatever the strategy;
-  /// same checks and errors as estimate()).
+  /// same checks and errors as estimate(); the volume's 32 bytes a pose count in its memory).
   ScoreVolume score_volume(const Observation& observation, const SearchWindow& window) const;
 
   /// The lattice estimate() and score_volume() search for `window`, clipped to the map,

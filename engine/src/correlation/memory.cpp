@@ -1,0 +1,93 @@
+// The correlation estimator's memory, estimated before it is allocated (issue 14). The bytes
+// per cell follow the code that allocates them: make_global_grid (grids/src/evidence.cpp),
+// pad_grid (search.cpp), make_bound_pyramid (bound_pyramid.cpp), HeadingGrids and the
+// searches' scored poses; bench/RESULTS.md compares the estimate with measured peaks.
+#include "gridloc/engine/correlation/memory.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gridloc {
+namespace {
+
+constexpr double kMapBytes = 1.0;            // CellState per map cell
+constexpr double kPaddedGridBytes = 10.0;    // grid + arc_view (float) + their int8 copies
+constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
+constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
+constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
+constexpr double kPyramidBaseBytes = 2.0;    // int8 copies of level 0
+constexpr double kPoolingBytes = 8.0;        // the arc copy and a pooling pass's row buffer
+constexpr double kLocalCellBytes = 12.0;     // PlacedLocalGrid: offset, value, fixed (4 each)
+constexpr double kPointCellBytes = 16.0;     // PointCells: offset (8), x and y (4 + 4)
+constexpr double kHeadingBytes = 300.0;      // HeadingGrids::Entry and the search's node
+constexpr double kPoseBytes = 32.0;          // a scored LatticePose (24) and its volume score
+
+double level_resolution(double finest, int l) {
+  return finest * static_cast<double>(1 << l);
+}
+
+/// One global grid of the estimator: what it keeps, and what building it needs on top.
+struct LevelBytes {
+  double kept = 0.0, building = 0.0;
+};
+
+LevelBytes level_bytes(const GridGeometry& map, const CorrelationOptions& options, double res,
+                       double reach_m) {
+  const GlobalGridSize size = global_grid_size(map, res, reach_m);
+  const double cells = size.width * size.height;
+  const double build =
+      kBuildBytes + (options.global == GlobalModel::LikelihoodField ? kFieldBuildBytes : 0.0);
+  return {kPaddedGridBytes * size.padded_cells(), build * cells};
+}
+
+/// The bound pyramid of the finest grid: what it keeps, and what pooling it needs on top.
+LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& options,
+                         double reach_m) {
+  if (options.strategy != SearchStrategy::BranchAndBound) return {};
+  const GlobalGridSize size = global_grid_size(map, options.resolution, reach_m);
+  const double padded = size.padded_cells();
+  const double depth = bound_pyramid_depth(size);
+  return {(kPyramidLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
+}
+
+double search_bytes(const SearchSize& search) {
+  const double per_heading =
+      kHeadingBytes + kLocalCellBytes * search.local_cells + kPointCellBytes * search.point_cells;
+  const double poses = search.every_pose ? search.translations * search.headings : 0.0;
+  return search.headings * per_heading + kPoseBytes * poses;
+}
+
+}  // namespace
+
+GlobalGridSize global_grid_size(const GridGeometry& map, double resolution, double reach_m) {
+  GlobalGridSize size;
+  size.width = std::max(1.0, std::ceil(map.width * map.resolution / resolution - 1e-9));
+  size.height = std::max(1.0, std::ceil(map.height * map.resolution / resolution - 1e-9));
+  size.pad = std::ceil(reach_m / resolution) + 3.0;
+  return size;
+}
+
+int bound_pyramid_depth(const GlobalGridSize& size) {
+  const double side = std::max(size.width, size.height);
+  int depth = 0;
+  while (depth < 31 && std::ldexp(1.0, depth) < side) ++depth;
+  return depth + 1;
+}
+
+double correlation_memory_bytes(const GridGeometry& map, const CorrelationOptions& options,
+                                double reach_m, const SearchSize& search) {
+  const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
+  double kept = kMapBytes * map.width * map.height, building = 0.0;
+  for (int l = 0; l < built; ++l) {
+    const LevelBytes level =
+        level_bytes(map, options, level_resolution(options.resolution, l), reach_m);
+    building = std::max(building, level.building);  // one level is built at a time
+    kept += level.kept;
+  }
+  const LevelBytes pyramid = pyramid_bytes(map, options, reach_m);
+  building = std::max(building, pyramid.building);
+  kept += pyramid.kept;
+  return kept + building + search_bytes(search);
+}
+
+}  // namespace gridloc
