@@ -10,6 +10,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
+#include "limit_options.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -24,7 +25,7 @@ struct DemoArgs {
 
 void run(const DemoArgs& args) {
   const OccupancyMap map = load_map(args.map, args.octomap.slice);
-  const SonarRing ring = load_sonar_ring(args.ring);
+  const SonarRing ring = load_sonar_ring(args.ring, limits());
   Rng rng(args.seed);
   const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
   const auto ranges = simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()));

@@ -17,6 +17,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
+#include "limit_options.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -168,7 +169,7 @@ void run(const EvalArgs& args, const DriveArgs& drive) {
   const EvalOptions options = eval_options(args);
   std::vector<EvalMap> maps;
   for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
-  const SonarRing ring = load_sonar_ring(args.ring);
+  const SonarRing ring = load_sonar_ring(args.ring, limits());
   const EvalReport report = run_evaluation(maps, ring, options, [&](int done, int total) {
     if (args.quiet) return;
     std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, %zu configurations)", done,

@@ -14,6 +14,7 @@
 #include "gridloc/sensors/log_map.hpp"
 #include "gridloc/sensors/log_split.hpp"
 #include "heatmap_plot.hpp"
+#include "limit_options.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -101,9 +102,13 @@ void print_summary(const nlohmann::json& s) {
 }
 
 void run(const MapFromLogArgs& args) {
-  validate(args.map);  // before the log is read: a bad option is reported first
+  LogMapOptions map_options = args.map;
+  map_options.limits = limits();
+  validate(map_options);  // before the log is read: a bad option is reported first
   validate(args.split);
-  const CarmenLog log = load_carmen_log(args.log);
+  CarmenOptions carmen;
+  carmen.limits = limits();
+  const CarmenLog log = load_carmen_log(args.log, carmen);
   const LogSplit split =
       args.part == "all" ? all_scans(log.lasers) : split_log(log.lasers, args.split);
   const std::vector<std::size_t>& scans = part_scans(split, args.part);
@@ -111,7 +116,7 @@ void run(const MapFromLogArgs& args) {
     throw Error(args.log + ": the " + args.part + " part holds no scan (" +
                 std::to_string(split.blocks) + " block(s) of " + to_string(split.rule) + ")");
   }
-  const OccupancyMap map = map_from_log(log, scans, args.map);
+  const OccupancyMap map = map_from_log(log, scans, map_options);
   save_ros_map(map, args.out);
   if (args.png) write_png(map, fs::path(args.out).replace_extension(".png").string());
   const nlohmann::json out = summary(args, log.lasers.size(), split, map);

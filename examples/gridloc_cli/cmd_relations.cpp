@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/relations.hpp"
 #include "gridloc/grids/error.hpp"
+#include "limit_options.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -61,14 +62,17 @@ void run(const RelationsArgs& args) {
   RelationEvalOptions options = args.options;
   options.matcher = parse_estimator_kind(args.estimator);
   args.search.apply(options.correlation);
+  options.correlation.limits = limits();
   validate(options);
   std::ofstream trials;
   if (!args.trials_out.empty()) {
     trials.open(args.trials_out);
     if (!trials) throw Error("--trials-out: cannot write " + args.trials_out);
   }
-  const CarmenLog log = load_carmen_log(args.log);
-  const auto relations = load_slam_relations(args.relations);
+  CarmenOptions carmen;
+  carmen.limits = limits();
+  const CarmenLog log = load_carmen_log(args.log, carmen);
+  const auto relations = load_slam_relations(args.relations, limits());
   const auto pairs = pair_relations(relations, log, args.time_offset, args.tolerance);
   const RelationEvalReport report = evaluate_relations(log, pairs, options);
   if (trials.is_open()) write_trials(trials, args.trials_out, report);

@@ -8,6 +8,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
+#include "limit_options.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -29,7 +30,7 @@ void run(const SimulateArgs& args) {
     throw Error("--firings must lie in [1, 100], got " + std::to_string(args.firings));
   }
   const OccupancyMap map = load_map(args.map, args.octomap.slice);
-  const SonarRing ring = load_sonar_ring(args.ring);
+  const SonarRing ring = load_sonar_ring(args.ring, limits());
   // Consecutive firings from the same pose draw their noise independently: the first from
   // --seed (what one firing would read), the others from seeds hashed from it and k, so
   // that neighbouring --seed values share no firing.

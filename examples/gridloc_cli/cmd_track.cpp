@@ -10,6 +10,7 @@
 #include "gridloc/engine/evaluation/log_tracking.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/log_split.hpp"
+#include "limit_options.hpp"
 #include "options.hpp"
 
 namespace gridloc::cli {
@@ -86,6 +87,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   if (args.trial_count < 0) throw Error("--trials must be >= 0");
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
   LogTrackingOptions options;
+  options.localizer.correlation.limits = limits();
   options.localizer.correlation.resolution =
       args.resolution > 0.0 ? args.resolution : map.geometry.resolution;
   options.localizer.drive.max_distance_m = args.window_m;
@@ -200,7 +202,9 @@ void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap&
 
 void run(const TrackArgs& args) {
   const OccupancyMap map = load_map(args.map);
-  const CarmenLog log = load_carmen_log(args.log);
+  CarmenOptions carmen;
+  carmen.limits = limits();
+  const CarmenLog log = load_carmen_log(args.log, carmen);
   const LogTrackingOptions options = tracking_options(args, log, map);
   if (args.trial_count > 0) return run_trials(args, log, map, options);
   TrackTally tally;

@@ -1,5 +1,6 @@
 // gridloc eval --drive: the drive protocol's options, run, table and JSON.
 #include "eval_drive.hpp"
+#include "limit_options.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -131,7 +132,7 @@ void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,
   const DriveEvalOptions options = drive_options(args, drive);
   std::vector<EvalMap> maps;
   for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
-  const SonarRing ring = load_sonar_ring(args.ring);
+  const SonarRing ring = load_sonar_ring(args.ring, limits());
   const DriveEvalReport report =
       run_drive_evaluation(maps, ring, options, [&](int done, int total) {
         if (!args.quiet) std::fprintf(stderr, "\r[eval --drive] %d/%d trials", done, total);

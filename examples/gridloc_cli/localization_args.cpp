@@ -1,4 +1,5 @@
 #include "localization_args.hpp"
+#include "limit_options.hpp"
 
 #include <chrono>
 
@@ -93,11 +94,11 @@ Localization prepare_localization(const LocalizationArgs& args) {
   Localization localization;
   std::vector<std::vector<double>> firings;
   if (args.scan.empty()) {
-    firings = load_firings(args.readings);
+    firings = load_firings(args.readings, limits());
     localization.firings = static_cast<int>(firings.size());
     localization.observation.ranges = firings.front();
   } else {
-    localization.observation.scan = load_scan_csv(args.scan, args.max_range);
+    localization.observation.scan = load_scan_csv(args.scan, args.max_range, limits());
   }
   const auto t0 = clock::now();
   OccupancyMap map = load_map(args.map, args.octomap.slice);
@@ -111,12 +112,13 @@ Localization prepare_localization(const LocalizationArgs& args) {
   args.field.apply(options);
   options.resolution = localization.window.step_xy;
   options.levels = args.levels;
+  options.limits = limits();
   // A scan needs no ring: the padding covers its max range instead.
   options.reach_m = localization.observation.scan ? args.max_range : 0.0;
   if (localization.observation.scan) {
     localization.estimator = std::make_unique<CorrelationEstimator>(std::move(map), options);
   } else {
-    SonarRing ring = load_sonar_ring(args.ring);
+    SonarRing ring = load_sonar_ring(args.ring, limits());
     if (firings.size() > 1) {  // consecutive firings: keep the echoes they repeat
       FilteredReadings filtered = filter_echoes(ring, firings);
       localization.observation.ranges = std::move(filtered.ranges);
