@@ -34,6 +34,12 @@ void check(const CorrelationOptions& options) {
   }
   validate(options.scan);
   options.field.validate();
+  // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws
+  // outside it (issue 14: --arc-depth 1e11 crashed, 1e300 blamed the padding).
+  if (!(options.sonar.arc_depth_cells >= 0.0 && options.sonar.arc_depth_cells <= 2.0)) {
+    throw Error("correlation options: arc depth must lie in [0, 2] cells, got " +
+                std::to_string(options.sonar.arc_depth_cells));
+  }
   if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
                 std::to_string(options.budget_ms));
@@ -54,6 +60,13 @@ void check(const CorrelationOptions& options) {
 
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
                      const SearchSize& search) {
+  const double width_m = map.width * map.resolution, height_m = map.height * map.resolution;
+  if (options.resolution > std::max(width_m, height_m)) {
+    std::ostringstream m;
+    m << "correlation options: resolution " << options.resolution << " m is coarser than the map ("
+      << width_m << " x " << height_m << " m); the search grid would be a single cell";
+    throw Error(m.str());
+  }
   const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
   for (int l = 0; l < built; ++l) {
     const double res = options.resolution * static_cast<double>(1 << l);
@@ -65,8 +78,8 @@ void check_resources(const GridGeometry& map, const CorrelationOptions& options,
                      what.str() + " padded by the reach");
   }
   std::ostringstream what;
-  what << "correlation estimator: the grids of a " << map.width * map.resolution << " x "
-       << map.height * map.resolution << " m map at " << options.resolution << " m";
+  what << "correlation estimator: the grids of a " << width_m << " x " << height_m << " m map at "
+       << options.resolution << " m";
   if (search.headings > 0.0) {
     what << " and a search of " << search.translations << " cells x " << search.headings
          << " headings";
@@ -176,8 +189,9 @@ void validate(const SearchWindow& w) {
     bad("half_theta", w.half_theta, "must lie in [0, pi]");
   }
   if (!(w.step_xy > 0.0) || !std::isfinite(w.step_xy)) bad("step_xy", w.step_xy, "must be > 0");
-  if (!(w.step_theta > 0.0) || !std::isfinite(w.step_theta)) {
-    bad("step_theta", w.step_theta, "must be > 0");
+  // More than a turn is no step (issue 14: --step-theta 1e300 drew a heatmap for minutes).
+  if (!(w.step_theta > 0.0) || !(w.step_theta <= 2.0 * std::numbers::pi)) {
+    bad("step_theta", w.step_theta, "must lie in (0, 2 pi]");
   }
 }
 

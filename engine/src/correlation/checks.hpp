@@ -11,7 +11,8 @@ void check(const CorrelationOptions& options);
 /// What the global grids' padding covers (m); throws gridloc::Error for a bad reach.
 double padding_reach(const CorrelationOptions& options, const SonarRing& ring);
 
-/// Checks the cells of every global grid the options build for `map` (reach `reach` m) and
+/// Checks that options.resolution is not coarser than the map, then the cells of every global
+/// grid the options build for `map` (reach `reach` m) and
 /// the memory they and a search of size `search` need (correlation_memory_bytes) against
 /// options.limits, before anything is allocated; throws gridloc::Error naming the limit.
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,

@@ -128,6 +128,11 @@ void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
 double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
                          const std::vector<double>& ranges, const std::vector<bool>& rejected,
                          const Pose2& pose) {
+  // A winner whose cell centre lies past the map's edge (the last cell of a coarse grid
+  // overhangs it) has no map around it to simulate: nothing agrees.
+  const Pose2 in_grid = map.geometry.to_grid_frame(pose);
+  const Cell cell = map.geometry.cell_of(in_grid.x, in_grid.y);
+  if (!map.geometry.contains(cell.ix, cell.iy)) return 0.0;
   const std::vector<double> expected = simulate_sonar(map, ring, pose);
   int agree = 0, used = 0;
   for (std::size_t i = 0; i < ranges.size(); ++i) {

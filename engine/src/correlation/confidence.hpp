@@ -33,7 +33,8 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
 /// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`.
 void judge(Estimate& e, bool searched_second, const VerdictOptions& v);
 
-/// Estimate::agreement: the share of `ranges` a noise-free simulation at `pose` reproduces.
+/// Estimate::agreement: the share of `ranges` a noise-free simulation at `pose` reproduces
+/// (0 for a pose outside the map).
 double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
                          const std::vector<double>& ranges, const std::vector<bool>& rejected,
                          const Pose2& pose);
