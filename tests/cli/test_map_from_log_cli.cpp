@@ -124,7 +124,7 @@ TEST(MapFromLogCli, ErrorsAreOneLine) {
   expect_cli_error(run("--log " + quote(log) + out + " --part odd"), "--part");
   expect_cli_error(run("--log " + quote(log) + out + " --resolution 0"), "resolution");
   expect_cli_error(run("--log " + quote(log) + out + " --resolution 0.0001"),
-                   {"would be", "max_cells"});
+                   {"map from log", "cells exceeds the limit", "--max-cells"});
   expect_cli_error(run("--log " + quote(log) + out + " --max-range -1"), "max_range_m");
   expect_cli_error(run("--log " + quote(log) + out + " --block-s -3 --part map"), "block_s");
   expect_cli_error(run("--log " + quote(log) + out + " --block-scans 0"), "block_scans");
