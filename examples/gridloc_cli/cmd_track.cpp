@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "commands.hpp"
@@ -87,8 +88,10 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   if (args.trial_count < 0) throw Error("--trials must be >= 0");
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
   if (!(args.resolution >= 0.0) || !std::isfinite(args.resolution)) {
-    throw Error("--resolution must be a finite cell size >= 0 (0: the map's cell), got " +
-                std::to_string(args.resolution));
+    std::ostringstream m;
+    m << "--resolution must be a finite cell size >= 0 (0: the map's cell), got "
+      << args.resolution;
+    throw Error(m.str());
   }
   LogTrackingOptions options;
   options.localizer.correlation.limits = limits();

@@ -37,8 +37,10 @@ void check(const CorrelationOptions& options) {
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws
   // outside it (issue 14: --arc-depth 1e11 crashed, 1e300 blamed the padding).
   if (!(options.sonar.arc_depth_cells >= 0.0 && options.sonar.arc_depth_cells <= 2.0)) {
-    throw Error("correlation options: arc depth must lie in [0, 2] cells, got " +
-                std::to_string(options.sonar.arc_depth_cells));
+    std::ostringstream m;
+    m << "correlation options: arc depth must lie in [0, 2] cells, got "
+      << options.sonar.arc_depth_cells;
+    throw Error(m.str());
   }
   if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
     throw Error("correlation options: budget_ms must be finite and >= 0, got " +
