@@ -2,14 +2,17 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <set>
+#include <utility>
 
 #include "gridloc/grids/error.hpp"
+#include "map_image.hpp"
 
 namespace gridloc {
 namespace {
@@ -36,13 +39,32 @@ MapMode parse_mode(const std::string& s, const std::string& file) {
   fail(file, "key 'mode' must be trinary, scale or raw, not '" + s + "'");
 }
 
+/// A coordinate of the map (its resolution, origin or a corner) within max_coordinate_m.
+void check_coordinate(double value, const std::string& what, const std::string& file,
+                      const ResourceLimits& limits) {
+  check_limit(std::abs(value), limits.max_coordinate_m, file + ": " + what, "m",
+              LimitNames::coordinate_m);
+}
+
+/// The map's four corners (the image's extent at its resolution, turned by the origin's yaw)
+/// within max_coordinate_m, so that every cell centre is a well-conditioned coordinate.
+void check_extent(const MapMetadata& meta, int width, int height, const std::string& file,
+                  const ResourceLimits& limits) {
+  const double w = width * meta.resolution, h = height * meta.resolution;
+  const double c = std::cos(meta.origin.theta), s = std::sin(meta.origin.theta);
+  for (const auto& [dx, dy] : {std::pair{w, 0.0}, {0.0, h}, {w, h}}) {
+    check_coordinate(meta.origin.x + c * dx - s * dy, "a corner of the map (x)", file, limits);
+    check_coordinate(meta.origin.y + s * dx + c * dy, "a corner of the map (y)", file, limits);
+  }
+}
+
 }  // namespace
 
-static MapMetadata parse_map_metadata(const std::string& yaml_path) {
-  if (!fs::exists(yaml_path)) fail(yaml_path, "map file not found");
+static MapMetadata parse_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
   YAML::Node root;
+  const std::string text = read_input_file(yaml_path, "map YAML", limits);
   try {
-    root = YAML::LoadFile(yaml_path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     fail(yaml_path, std::string("malformed YAML: ") + e.what());
   }
@@ -66,6 +88,7 @@ static MapMetadata parse_map_metadata(const std::string& yaml_path) {
   if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) {
     fail(yaml_path, "key 'resolution' must be positive, got " + std::to_string(m.resolution));
   }
+  check_coordinate(m.resolution, "key 'resolution'", yaml_path, limits);
   const auto origin = root["origin"];
   if (!origin.IsSequence() || origin.size() != 3) {
     fail(yaml_path, "key 'origin' must be a list [x, y, yaw]");
@@ -76,6 +99,8 @@ static MapMetadata parse_map_metadata(const std::string& yaml_path) {
   if (!std::isfinite(m.origin.x) || !std::isfinite(m.origin.y) || !std::isfinite(m.origin.theta)) {
     fail(yaml_path, "key 'origin' must hold finite numbers");
   }
+  check_coordinate(m.origin.x, "key 'origin' x", yaml_path, limits);
+  check_coordinate(m.origin.y, "key 'origin' y", yaml_path, limits);
   if (root["negate"]) {
     // map_server accepts 0/1 as well as true/false.
     const auto s = read_scalar<std::string>(root["negate"], "negate", yaml_path);
@@ -103,25 +128,24 @@ static MapMetadata parse_map_metadata(const std::string& yaml_path) {
   return m;
 }
 
-MapMetadata load_map_metadata(const std::string& yaml_path) {
+MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
   try {
-    return parse_map_metadata(yaml_path);
+    return parse_map_metadata(yaml_path, limits);
   } catch (const YAML::Exception& e) {
     // Conversions not caught field by field (e.g. a non-scalar key) still name the file.
     fail(yaml_path, std::string("invalid map YAML: ") + e.what());
   }
 }
 
-OccupancyMap load_ros_map(const std::string& yaml_path) {
-  const MapMetadata meta = load_map_metadata(yaml_path);
+OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& limits) {
+  const MapMetadata meta = load_map_metadata(yaml_path, limits);
   fs::path image_path = meta.image;
   if (image_path.is_relative()) image_path = fs::path(yaml_path).parent_path() / image_path;
   if (!fs::exists(image_path)) {
     fail(yaml_path, "image file '" + image_path.string() + "' not found");
   }
-  const cv::Mat img = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
-  if (img.empty()) fail(image_path.string(), "cannot decode the image (expected PGM or PNG)");
-  if (img.depth() != CV_8U) fail(image_path.string(), "only 8-bit images are supported");
+  const cv::Mat img = read_map_image(image_path.string(), limits);
+  check_extent(meta, img.cols, img.rows, yaml_path, limits);
 
   const int channels = img.channels();
   const bool has_alpha = channels == 2 || channels == 4;
@@ -181,7 +205,13 @@ void save_ros_map(const OccupancyMap& map, const std::string& yaml_path) {
       px[ix] = s == CellState::Occupied ? 0 : s == CellState::Free ? 254 : 205;
     }
   }
-  if (!cv::imwrite(pgm.string(), img)) fail(pgm.string(), "cannot write the image");
+  bool written = false;
+  try {
+    written = cv::imwrite(pgm.string(), img);
+  } catch (const cv::Exception& e) {
+    fail(pgm.string(), std::string("cannot write the image: ") + e.err);
+  }
+  if (!written) fail(pgm.string(), "cannot write the image");
   std::ofstream out(yaml);
   if (!out) fail(yaml_path, "cannot write the map YAML");
   out << std::setprecision(17);  // round-trip exact doubles

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/limits.hpp"
 
 namespace gridloc {
 
@@ -20,14 +21,23 @@ struct MapMetadata {
 };
 
 /// Reads and validates a map_server YAML file; throws gridloc::Error naming the file and key.
-MapMetadata load_map_metadata(const std::string& yaml_path);
+/// The file is checked first (check_input_file: missing, a directory, over max_file_mb); the
+/// resolution and each origin coordinate must not exceed limits.max_coordinate_m.
+MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits& limits = {});
 
 /// Loads a map_server map. The image's rows are flipped so that row index grows with world y.
 /// Pixels are classified as map_server does: occupancy p = (255 - v) / 255 (v averaged over
 /// colour channels, negated if asked); p > occupied_thresh is Occupied, p < free_thresh Free,
 /// otherwise Unknown; a transparent pixel is Unknown. In raw mode v itself is the occupancy in
 /// percent (0..100, anything above 100 Unknown), compared with the thresholds.
-OccupancyMap load_ros_map(const std::string& yaml_path);
+///
+/// The image is a PGM/PPM (P2, P3, P5, P6; a maxval below 255 is scaled to 0..255 as
+/// map_server does, 16-bit images are rejected) or a PNG of 8 or fewer bits per sample. Its
+/// declared size is checked against `limits` (max_cells, and max_memory_mb for the file, the
+/// decoded image and the map) before it is decoded, and the map's corners against
+/// max_coordinate_m. A damaged, truncated or oversized image is a gridloc::Error naming the
+/// file; nothing is printed.
+OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& limits = {});
 
 /// Writes a map as map_server YAML + PGM (trinary: 0 occupied, 254 free, 205 unknown).
 void save_ros_map(const OccupancyMap& map, const std::string& yaml_path);
