@@ -1,5 +1,6 @@
 #include "gridloc/grids/evidence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -7,18 +8,29 @@
 
 namespace gridloc {
 
-OccupancyMap resample(const OccupancyMap& map, double resolution) {
+namespace {
+
+/// The cells of one side of the resampled grid, as a double (checked before any cast). A
+/// tolerance keeps an exact ratio (e.g. 0.05 -> 0.10) from gaining a spurious column.
+double resampled_side(int cells, double from, double to) {
+  return std::max(1.0, std::ceil(cells * from / to - 1e-9));
+}
+
+}  // namespace
+
+OccupancyMap resample(const OccupancyMap& map, double resolution, const ResourceLimits& limits) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("grid resolution must be positive, got " + std::to_string(resolution));
   }
   const GridGeometry& src = map.geometry;
+  const double width = resampled_side(src.width, src.resolution, resolution);
+  const double height = resampled_side(src.height, src.resolution, resolution);
+  check_grid_cells(width, height, limits,
+                   "the map resampled at " + std::to_string(resolution) + " m");
   GridGeometry g = src;
   g.resolution = resolution;
-  // A tolerance keeps an exact ratio (e.g. 0.05 -> 0.10) from gaining a spurious column.
-  g.width =
-      std::max(1, static_cast<int>(std::ceil(src.width * src.resolution / resolution - 1e-9)));
-  g.height =
-      std::max(1, static_cast<int>(std::ceil(src.height * src.resolution / resolution - 1e-9)));
+  g.width = static_cast<int>(width);
+  g.height = static_cast<int>(height);
 
   if (resolution < src.resolution) {
     OccupancyMap out(g, CellState::Unknown);
@@ -84,8 +96,8 @@ EvidenceGrid make_thinned_evidence(const OccupancyMap& map) {
 }
 
 EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model,
-                              const LikelihoodFieldOptions& field) {
-  const OccupancyMap level = resample(map, resolution);
+                              const LikelihoodFieldOptions& field, const ResourceLimits& limits) {
+  const OccupancyMap level = resample(map, resolution, limits);
   switch (model) {
     case GlobalModel::Thinned:
       return make_thinned_evidence(level);

@@ -116,6 +116,107 @@ Polygon read_ring(const YAML::Node& node, const std::string& where) {
   return ring;
 }
 
+/// The number of vertices and the coordinates of every ring within the limits, before the
+/// (quadratic) checks of make_polygon_map run.
+void check_polygon_limits(const Polygon& boundary, const std::vector<Polygon>& obstacles,
+                          const ResourceLimits& limits) {
+  double vertices = static_cast<double>(boundary.size());
+  for (const auto& o : obstacles) vertices += static_cast<double>(o.size());
+  check_limit(vertices, limits.max_vertices, "the polygon map's rings", "vertices",
+              LimitNames::vertices);
+  const auto check_ring_coordinates = [&](const Polygon& ring, const std::string& name) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      if (!ring[i].allFinite()) continue;  // check_ring names it
+      check_limit(ring[i].cwiseAbs().maxCoeff(), limits.max_coordinate_m,
+                  name + " vertex " + std::to_string(i) + ": a coordinate", "m",
+                  LimitNames::coordinate_m);
+    }
+  };
+  check_ring_coordinates(boundary, "boundary");
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    check_ring_coordinates(obstacles[k], "obstacle " + std::to_string(k));
+  }
+}
+
+/// The rings of a polygon map file, their vertex count checked against the limit as they are
+/// read (before they are stored).
+struct FileRings {
+  Polygon boundary;
+  std::vector<Polygon> obstacles;
+};
+
+FileRings read_rings(const YAML::Node& root, const ResourceLimits& limits) {
+  const YAML::Node obstacle_nodes = root["obstacles"];
+  if (obstacle_nodes && !obstacle_nodes.IsSequence()) {
+    throw Error("obstacles must be a list of rings");
+  }
+  // Each ring of the file repeats its first vertex at the end; that one is not counted.
+  const auto ring_vertices = [](const YAML::Node& ring) {
+    return ring.IsSequence() && ring.size() > 0 ? ring.size() - 1.0 : 0.0;
+  };
+  double vertices = ring_vertices(root["boundary"]);
+  for (std::size_t k = 0; obstacle_nodes && k < obstacle_nodes.size(); ++k) {
+    vertices += ring_vertices(obstacle_nodes[k]);
+  }
+  check_limit(vertices, limits.max_vertices, "its rings", "vertices", LimitNames::vertices);
+  FileRings rings{read_ring(root["boundary"], "boundary"), {}};
+  for (std::size_t k = 0; obstacle_nodes && k < obstacle_nodes.size(); ++k) {
+    rings.obstacles.push_back(read_ring(obstacle_nodes[k], "obstacle " + std::to_string(k)));
+  }
+  return rings;
+}
+
+/// The x of every crossing of the rings' edges with the line at height y, in increasing order:
+/// the crossings inside() counts, computed by the same expression.
+std::vector<double> row_crossings(const std::vector<const Polygon*>& rings, double y) {
+  std::vector<double> xs;
+  for (const Polygon* ring : rings) {
+    const std::size_t n = ring->size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const Eigen::Vector2d &a = (*ring)[i], &b = (*ring)[j];
+      if ((a.y() > y) != (b.y() > y)) {
+        xs.push_back((b.x() - a.x()) * (y - a.y()) / (b.y() - a.y()) + a.x());
+      }
+    }
+  }
+  std::sort(xs.begin(), xs.end());
+  return xs;
+}
+
+/// Walks a row's cell centres left to right, saying whether each lies inside the rings whose
+/// crossings it holds (an odd number of crossings to its right: the even-odd rule).
+class RowParity {
+ public:
+  explicit RowParity(std::vector<double> crossings) : xs_(std::move(crossings)) {}
+  bool inside(double x) {
+    while (next_ < xs_.size() && xs_[next_] <= x) ++next_;
+    return (xs_.size() - next_) % 2 == 1;
+  }
+
+ private:
+  std::vector<double> xs_;
+  std::size_t next_ = 0;
+};
+
+/// Row iy of the rasterized map: Free inside the boundary, Occupied inside an obstacle (the
+/// obstacles are disjoint, so the parity of all their crossings is "inside one of them"). A
+/// centre exactly on an edge may differ from inside()'s answer, but such a cell is a wall cell
+/// and the walls are drawn over the rows.
+void fill_row(OccupancyMap& out, const PolygonMap& map, int iy) {
+  const GridGeometry& g = out.geometry;
+  const double y = (g.origin + g.cell_center(0, iy)).y();
+  std::vector<const Polygon*> obstacles;
+  for (const auto& o : map.obstacles) obstacles.push_back(&o);
+  RowParity in_boundary(row_crossings({&map.boundary}, y));
+  RowParity in_obstacle(row_crossings(obstacles, y));
+  for (int ix = 0; ix < g.width; ++ix) {
+    const Eigen::Vector2d c = g.origin + g.cell_center(ix, iy);
+    const bool free_side = in_boundary.inside(c.x());
+    const bool obstacle = in_obstacle.inside(c.x());
+    if (free_side) out.at(ix, iy) = obstacle ? CellState::Occupied : CellState::Free;
+  }
+}
+
 }  // namespace
 
 double signed_area2(const Polygon& polygon) {
@@ -140,10 +241,12 @@ bool inside(const Polygon& polygon, const Eigen::Vector2d& p) {
   return in;
 }
 
-PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles, double resolution) {
+PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles, double resolution,
+                            const ResourceLimits& limits) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("polygon map: resolution must be positive, got " + std::to_string(resolution));
   }
+  check_polygon_limits(boundary, obstacles, limits);
   check_ring(boundary, "boundary");
   if (signed_area2(boundary) < 0.0) std::reverse(boundary.begin(), boundary.end());
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
@@ -168,22 +271,24 @@ PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles, do
   return {std::move(boundary), std::move(obstacles), resolution};
 }
 
-bool is_polygon_map_file(const std::string& path) {
+bool is_polygon_map_file(const std::string& path, const ResourceLimits& limits) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".yaml" && ext != ".yml") return false;
   try {
-    const YAML::Node root = YAML::LoadFile(path);
+    const YAML::Node root = YAML::Load(read_input_file(path, "map YAML", limits));
     return root.IsMap() && root["boundary"];
   } catch (const YAML::Exception&) {
     return false;
+  } catch (const Error&) {
+    return false;  // not a readable file: the map loader that follows says why
   }
 }
 
-PolygonMap load_polygon_map(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error("polygon map " + path + " not found");
+PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limits) {
+  const std::string text = read_input_file(path, "polygon map", limits);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw Error("polygon map " + path + ": not valid YAML: " + e.what());
   }
@@ -199,15 +304,9 @@ PolygonMap load_polygon_map(const std::string& path) {
         throw Error("resolution must be a number");
       }
     }
-    Polygon boundary = read_ring(root["boundary"], "boundary");
-    std::vector<Polygon> obstacles;
-    if (root["obstacles"]) {
-      if (!root["obstacles"].IsSequence()) throw Error("obstacles must be a list of rings");
-      for (std::size_t k = 0; k < root["obstacles"].size(); ++k) {
-        obstacles.push_back(read_ring(root["obstacles"][k], "obstacle " + std::to_string(k)));
-      }
-    }
-    return make_polygon_map(std::move(boundary), std::move(obstacles), resolution);
+    FileRings rings = read_rings(root, limits);
+    return make_polygon_map(std::move(rings.boundary), std::move(rings.obstacles), resolution,
+                            limits);
   } catch (const Error& e) {
     throw Error("polygon map " + path + ": " + e.what());
   }
@@ -225,7 +324,8 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> polygon_edges(const Pol
   return edges;
 }
 
-OccupancyMap rasterize_polygon_map(const PolygonMap& map, double resolution, double margin_m) {
+OccupancyMap rasterize_polygon_map(const PolygonMap& map, double resolution, double margin_m,
+                                   const ResourceLimits& limits) {
   if (resolution == 0.0) resolution = map.resolution;
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("rasterize_polygon_map: resolution must be positive, got " +
@@ -239,22 +339,14 @@ OccupancyMap rasterize_polygon_map(const PolygonMap& map, double resolution, dou
   GridGeometry g;
   g.resolution = resolution;
   g.origin = lo - Eigen::Vector2d::Constant(margin_m);
-  g.width = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution));
-  g.height = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution));
-  if (static_cast<double>(g.width) * g.height > 4e8) {
-    throw Error("rasterize_polygon_map: " + std::to_string(g.width) + " x " +
-                std::to_string(g.height) + " cells is too large; use a coarser resolution");
-  }
+  const double width = std::ceil((hi.x() - lo.x() + 2 * margin_m) / resolution);
+  const double height = std::ceil((hi.y() - lo.y() + 2 * margin_m) / resolution);
+  check_grid_cells(width, height, limits,
+                   "the polygon map rasterized at " + std::to_string(resolution) + " m");
+  g.width = static_cast<int>(width);
+  g.height = static_cast<int>(height);
   OccupancyMap out(g, CellState::Unknown);
-  for (int iy = 0; iy < g.height; ++iy) {
-    for (int ix = 0; ix < g.width; ++ix) {
-      const Eigen::Vector2d c = g.origin + g.cell_center(ix, iy);
-      if (!inside(map.boundary, c)) continue;
-      bool in_obstacle = false;
-      for (const auto& o : map.obstacles) in_obstacle = in_obstacle || inside(o, c);
-      out.at(ix, iy) = in_obstacle ? CellState::Occupied : CellState::Free;
-    }
-  }
+  for (int iy = 0; iy < g.height; ++iy) fill_row(out, map, iy);
   // Walls: every cell an edge passes through, sampled finer than a cell so none is skipped.
   for (const auto& [a, b] : polygon_edges(map)) {
     const int steps = static_cast<int>(std::ceil((b - a).norm() / (0.125 * resolution))) + 1;

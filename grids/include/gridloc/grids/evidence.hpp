@@ -2,6 +2,7 @@
 /// Global evidence grids built from a map (seed 001 §2 and §5).
 #include "gridloc/grids/grid.hpp"
 #include "gridloc/grids/likelihood_field.hpp"
+#include "gridloc/grids/limits.hpp"
 
 namespace gridloc {
 
@@ -14,8 +15,10 @@ enum class GlobalModel { Raw, Thinned, LikelihoodField };
 /// Builds the map directly at another resolution (seed 001 §2: never by averaging evidence):
 /// a cell is Occupied if any map cell centred in it is occupied, Free if all such cells are
 /// free, Unknown otherwise. Finer resolutions sample the map at the cell centre. The result
-/// keeps the map's origin and yaw. Throws gridloc::Error for a non-positive resolution.
-OccupancyMap resample(const OccupancyMap& map, double resolution);
+/// keeps the map's origin and yaw. Throws gridloc::Error for a non-positive resolution, and
+/// for a result over limits.max_cells (its size is checked as doubles before it is cast).
+OccupancyMap resample(const OccupancyMap& map, double resolution,
+                      const ResourceLimits& limits = {});
 
 /// Occupied +1, free -1, unknown 0.
 EvidenceGrid make_evidence(const OccupancyMap& map);
@@ -25,8 +28,10 @@ EvidenceGrid make_evidence(const OccupancyMap& map);
 EvidenceGrid make_thinned_evidence(const OccupancyMap& map);
 
 /// The global grid of one search level: `map` resampled at `resolution`, then raw, thinned or
-/// its likelihood field (with `field`, which only that model reads) at that resolution.
+/// its likelihood field (with `field`, which only that model reads) at that resolution;
+/// `limits` bounds the resampled grid (see resample()).
 EvidenceGrid make_global_grid(const OccupancyMap& map, double resolution, GlobalModel model,
-                              const LikelihoodFieldOptions& field = {});
+                              const LikelihoodFieldOptions& field = {},
+                              const ResourceLimits& limits = {});
 
 }  // namespace gridloc

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/limits.hpp"
 
 namespace gridloc {
 
@@ -42,17 +43,21 @@ bool inside(const Polygon& polygon, const Eigen::Vector2d& p);
 /// Checks the rules of the format and orients the rings; throws gridloc::Error naming the ring
 /// ("boundary", "obstacle 2") and the fault: fewer than 3 vertices, a non-finite vertex, zero
 /// area, a repeated vertex, crossing edges, an obstacle outside the boundary or touching
-/// another ring.
+/// another ring. First, the vertices of all rings together must not exceed
+/// limits.max_vertices (the checks are quadratic in them), nor any coordinate
+/// limits.max_coordinate_m.
 PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles,
-                            double resolution = 0.05);
+                            double resolution = 0.05, const ResourceLimits& limits = {});
 
-/// Reads a polygon map file; gridloc::Error naming the file for a missing file, YAML that is
-/// not a polygon map, a ring that is not closed (its last vertex must repeat the first), and
-/// every fault make_polygon_map() finds.
-PolygonMap load_polygon_map(const std::string& path);
+/// Reads a polygon map file; gridloc::Error naming the file for a file check_input_file()
+/// refuses (missing, a directory, over max_file_mb), YAML that is not a polygon map, more
+/// vertices than limits.max_vertices (checked before the rings are read), a ring that is not
+/// closed (its last vertex must repeat the first), and every fault make_polygon_map() finds.
+PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limits = {});
 
-/// Whether a YAML file is a polygon map (has a `boundary` key) rather than a map_server map.
-bool is_polygon_map_file(const std::string& path);
+/// Whether a YAML file is a polygon map (has a `boundary` key) rather than a map_server map;
+/// false for a file that cannot be read within `limits` (the map loader then says why).
+bool is_polygon_map_file(const std::string& path, const ResourceLimits& limits = {});
 
 /// Every edge of every ring, (a, b) with the free space on the left.
 std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> polygon_edges(const PolygonMap& map);
@@ -60,8 +65,9 @@ std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> polygon_edges(const Pol
 /// The occupancy map of a polygon map at `resolution` (m; 0 = the map's own): cells an edge
 /// passes through are Occupied, so every wall is a closed contour; other cells inside the
 /// boundary and outside every obstacle are Free, obstacle interiors Occupied, and the band of
-/// `margin_m` around the boundary Unknown. Throws gridloc::Error for a bad resolution or margin.
+/// `margin_m` around the boundary Unknown. Throws gridloc::Error for a bad resolution or margin,
+/// or a grid over limits.max_cells (its size checked as doubles before any cast).
 OccupancyMap rasterize_polygon_map(const PolygonMap& map, double resolution = 0.0,
-                                   double margin_m = 0.5);
+                                   double margin_m = 0.5, const ResourceLimits& limits = {});
 
 }  // namespace gridloc
