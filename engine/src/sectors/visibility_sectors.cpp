@@ -81,6 +81,7 @@ constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
 
 /// The options' ranges; throws gridloc::Error naming the bad one.
 void check_options(const SectorOptions& options) {
+  options.limits.validate();
   if (!(options.cell_m > 0.0) || !std::isfinite(options.cell_m)) {
     throw Error("SectorOptions.cell_m must be positive, got " + std::to_string(options.cell_m));
   }
@@ -105,19 +106,28 @@ Box bounding_box(const Polygon& boundary) {
   return box;
 }
 
+/// Bytes per sampling cell besides its visible-vertex bits: the free flag, the face and sector
+/// indices and the face's member list.
+constexpr double kSectorBytesPerCell = 24.0;
+
 /// The sampling grid over the bounding box, cells of `cell_m`; throws gridloc::Error when it
-/// has too many cells.
-GridGeometry sampling_grid(const Box& box, double cell_m) {
+/// has more cells than limits.max_cells (checked as doubles, before the cast) or its visible
+/// sets of `vertices` bits per cell would need more than limits.max_memory_mb.
+GridGeometry sampling_grid(const Box& box, double cell_m, std::size_t vertices,
+                           const ResourceLimits& limits) {
+  const double width = std::ceil((box.hi.x() - box.lo.x()) / cell_m);
+  const double height = std::ceil((box.hi.y() - box.lo.y()) / cell_m);
+  const std::string what =
+      "compute_sectors: the sampling grid of " + std::to_string(cell_m) +
+      " m cells (a larger SectorOptions::cell_m, gridloc sectors --cell, makes it smaller)";
+  const double cells = check_grid_cells(width, height, limits, what);
+  const double words = std::ceil(static_cast<double>(vertices) / 64.0);
+  check_memory(cells * (kSectorBytesPerCell + 8.0 * words), limits, what);
   GridGeometry grid;
   grid.resolution = cell_m;
   grid.origin = box.lo;
-  grid.width = static_cast<int>(std::ceil((box.hi.x() - box.lo.x()) / cell_m));
-  grid.height = static_cast<int>(std::ceil((box.hi.y() - box.lo.y()) / cell_m));
-  if (static_cast<double>(grid.width) * grid.height > 2e7) {
-    throw Error(
-        "compute_sectors: " + std::to_string(grid.width) + " x " + std::to_string(grid.height) +
-        " cells; use a larger sampling cell (SectorOptions::cell_m, gridloc sectors --cell)");
-  }
+  grid.width = static_cast<int>(width);
+  grid.height = static_cast<int>(height);
   return grid;
 }
 
@@ -433,7 +443,7 @@ SectorMap compute_sectors(const PolygonMap& map, const SectorOptions& options) {
   const Geometry geometry(map);
   out.vertices = geometry.vertices;
   const Box box = bounding_box(map.boundary);
-  out.grid = sampling_grid(box, options.cell_m);
+  out.grid = sampling_grid(box, options.cell_m, geometry.vertices.size(), options.limits);
   const Visibility visibility = visible_vertices(map, geometry, out.grid);
   const Faces faces = connected_faces(out.grid, visibility);
   const double reach = 2.0 * (box.hi - box.lo).norm() + 1.0;

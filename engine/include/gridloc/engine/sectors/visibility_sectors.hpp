@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gridloc/engine/sectors/scan_label.hpp"
+#include "gridloc/grids/limits.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 
@@ -27,6 +28,9 @@ struct SectorOptions {
   /// N_min counts only cells at least this far (m) from every wall: where the robot can be.
   double clearance_m = 0.3;
   ScanLabelOptions label;  ///< for the dense scan (noise-free: median_window 1)
+  /// Bound the sampling grid (max_cells) and its visible-vertex sets (max_memory_mb), checked
+  /// before they are allocated.
+  ResourceLimits limits;
 };
 
 struct Sector {
