@@ -13,6 +13,7 @@
 #include "gridloc/engine/sectors/estimator.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
+#include "limit_options.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
 
@@ -57,7 +58,7 @@ std::unique_ptr<Estimator> make_sector_estimator(
         " needs a polygon map (--map with a 'boundary'; maps/README.md, Polygon map format), not " +
         args.inputs.map);
   }
-  const PolygonMap polygons = load_polygon_map(args.inputs.map);
+  const PolygonMap polygons = load_polygon_map(args.inputs.map, limits());
   if (kind == EstimatorKind::Sectors) return std::make_unique<SectorEstimator>(polygons);
   auto sectors = std::make_shared<const SectorEstimator>(polygons);
   // The local search on its own 2.5 cm lattice: the sector fix is already within

@@ -16,6 +16,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "heatmap_plot.hpp"
+#include "limit_options.hpp"
 #include "sectors_render.hpp"
 
 namespace gridloc::cli {
@@ -99,7 +100,7 @@ void run(const SectorsArgs& args) {
     throw Error("--cell must be a positive cell size in metres, got " +
                 std::to_string(args.cell_m));
   }
-  const PolygonMap map = load_polygon_map(args.polygons);
+  const PolygonMap map = load_polygon_map(args.polygons, limits());
   // The folder first: a bad --out fails before the sectors are computed.
   if (!args.out.empty()) {
     std::error_code ec;
@@ -111,6 +112,7 @@ void run(const SectorsArgs& args) {
   }
   SectorOptions options;
   options.cell_m = args.cell_m;
+  options.limits = limits();
   const SectorMap sectors = compute_sectors(map, options);
   const nlohmann::json out = sectors_json(args, sectors);
 

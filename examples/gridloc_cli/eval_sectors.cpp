@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
+#include "limit_options.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -126,7 +127,7 @@ void print_table_rows(const SectorEvalOptions& options, const SectorEvalReport& 
 
 void run_sector_eval(const SectorEvalArgs& args) {
   std::vector<SectorEvalMap> maps;
-  for (const auto& path : args.maps) maps.push_back({path, load_polygon_map(path)});
+  for (const auto& path : args.maps) maps.push_back({path, load_polygon_map(path, limits())});
   const SectorEvalOptions& options = args.options;
   const SectorEvalReport report = run_sector_evaluation(maps, options, [&](int done, int total) {
     if (args.quiet) return;

@@ -9,6 +9,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
+#include "limit_options.hpp"
 
 namespace gridloc::cli {
 
@@ -182,8 +183,10 @@ void OctomapArgs::add_to(CLI::App* cmd) {
 OccupancyMap load_map(const std::string& path, const OctomapSlice& slice) {
   if (is_octomap_path(path)) return load_octomap(path, slice);
   // A polygon map (a YAML file with a `boundary`) is rasterized at its own resolution.
-  if (is_polygon_map_file(path)) return rasterize_polygon_map(load_polygon_map(path));
-  return load_ros_map(path);
+  if (is_polygon_map_file(path, limits())) {
+    return rasterize_polygon_map(load_polygon_map(path, limits()), 0.0, 0.5, limits());
+  }
+  return load_ros_map(path, limits());
 }
 
 std::string data_dir() {
