@@ -180,5 +180,22 @@ TEST(GlobalGrid, IsResampleThenRawOrThinned) {
   EXPECT_EQ(plus, 14);
 }
 
+TEST(Evidence, ResampledSizeIsCheckedBeforeTheCast) {
+  // A map of 1e300 m cells (resolution: 1e300 in a YAML) resampled at 10 cm: the size is
+  // refused as doubles, not cast to a garbage int (the grid collapsed to one cell).
+  const OccupancyMap huge = test::filled_map(2, 2, CellState::Free, 1e300);
+  test::expect_error([&] { resample(huge, 0.1); }, {"resampled", "--max-cells"});
+  ResourceLimits unlimited;
+  unlimited.max_cells = 1e30;  // past the cell limit: the int range still holds
+  const OccupancyMap wide = test::filled_map(2, 2, CellState::Free, 1e10);
+  test::expect_error([&] { resample(wide, 0.1, unlimited); }, {"too long"});
+  const OccupancyMap room = test::filled_map(100, 100, CellState::Free, 0.05);
+  ResourceLimits small;
+  small.max_cells = 1000;
+  test::expect_error([&] { make_global_grid(room, 0.05, GlobalModel::Thinned, {}, small); },
+                     {"100 x 100", "--max-cells"});
+  EXPECT_EQ(make_global_grid(room, 0.5, GlobalModel::Thinned, {}, small).width(), 10);
+}
+
 }  // namespace
 }  // namespace gridloc

@@ -3,6 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
 #include "test_support.hpp"
 
 namespace gridloc {
@@ -90,6 +96,79 @@ TEST(PolygonMap, BundledPolygonMapsLoad) {
     for (const CellState c : g.cells) free += c == CellState::Free ? 1 : 0;
     EXPECT_GT(free, 5000) << name;
   }
+}
+
+// ---- limits (issue 14) --------------------------------------------------------------------
+
+/// A polygon with n vertices on a circle of radius 10 m about (10, 10).
+Polygon circle(int n) {
+  Polygon p;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2.0 * 3.141592653589793 * i / n;
+    p.emplace_back(10.0 + 10.0 * std::cos(a), 10.0 + 10.0 * std::sin(a));
+  }
+  return p;
+}
+
+TEST(PolygonMapLimits, VerticesAreCountedBeforeTheChecks) {
+  ResourceLimits limits;
+  limits.max_vertices = 20;
+  EXPECT_EQ(make_polygon_map(circle(12), {rect(8, 8, 9, 9)}, 0.05, limits).boundary.size(), 12u);
+  test::expect_error([&] { make_polygon_map(circle(18), {rect(8, 8, 9, 9)}, 0.05, limits); },
+                     {"22 vertices", "--max-vertices"});
+  test::TempDir dir;
+  std::ostringstream text;
+  text << std::setprecision(17) << "boundary: [";
+  for (const auto& v : circle(30)) text << "[" << v.x() << ", " << v.y() << "], ";
+  text << "[20, 10]]\n";
+  const std::string p = dir.write("p.yaml", text.str());
+  test::expect_error([&] { load_polygon_map(p, limits); }, {p, "30 vertices", "--max-vertices"});
+}
+
+TEST(PolygonMapLimits, CoordinatesBeyondTheLimitAreRefused) {
+  test::expect_error([&] { make_polygon_map(rect(0, 0, 1e12, 1e12), {}); },
+                     {"boundary vertex 1", "--max-coordinate-m"});
+  test::expect_error([&] { make_polygon_map(rect(0, 0, 10, 10), {rect(1, 1, 2, 2e7)}); },
+                     {"obstacle 0", "--max-coordinate-m"});
+}
+
+TEST(PolygonMapLimits, RasterSizeIsCheckedBeforeTheCast) {
+  ResourceLimits wide;
+  wide.max_coordinate_m = 1e13;
+  const PolygonMap huge = make_polygon_map(rect(0, 0, 1e12, 1e12), {}, 0.05, wide);
+  test::expect_error([&] { rasterize_polygon_map(huge, 0.0, 0.5, wide); },
+                     {"rasterized", "--max-cells"});
+  wide.max_cells = 1e30;  // past the cell limit: the int range still holds
+  test::expect_error([&] { rasterize_polygon_map(huge, 0.0, 0.5, wide); }, {"too long"});
+}
+
+TEST(PolygonMapLimits, ScanlineRasterMatchesThePointTest) {
+  // Every cell that is not a wall cell holds what inside() says of its centre.
+  const PolygonMap m =
+      make_polygon_map(circle(40), {rect(6, 6, 9, 8), {{12, 12}, {15, 12.5}, {13, 15}}}, 0.05);
+  for (double res : {0.013, 0.05, 0.3}) {
+    const OccupancyMap r = rasterize_polygon_map(m, res);
+    for (int iy = 0; iy < r.height(); ++iy) {
+      for (int ix = 0; ix < r.width(); ++ix) {
+        const Eigen::Vector2d c = r.geometry.origin + r.geometry.cell_center(ix, iy);
+        bool in_obstacle = false;
+        for (const auto& o : m.obstacles) in_obstacle = in_obstacle || inside(o, c);
+        const CellState want = !inside(m.boundary, c) ? CellState::Unknown
+                               : in_obstacle          ? CellState::Occupied
+                                                      : CellState::Free;
+        if (r.at(ix, iy) != CellState::Occupied) {
+          ASSERT_EQ(r.at(ix, iy), want) << "cell " << ix << ", " << iy << " at " << res;
+        }
+      }
+    }
+  }
+}
+
+TEST(PolygonMapLimits, DirectoryIsNamed) {
+  test::TempDir dir;
+  std::filesystem::create_directory(dir.file("p.yaml"));
+  test::expect_error([&] { load_polygon_map(dir.file("p.yaml")); }, {"p.yaml", "is a directory"});
+  EXPECT_FALSE(is_polygon_map_file(dir.file("p.yaml")));
 }
 
 }  // namespace

@@ -83,5 +83,20 @@ TEST(VisibilitySectors, MinimumReadingsOfASquareRoom) {
   test::expect_error([&] { compute_sectors(m, bad); }, {"cell_m"});
 }
 
+TEST(VisibilitySectors, SamplingGridIsCheckedBeforeItIsAllocated) {
+  ResourceLimits wide;
+  wide.max_coordinate_m = 1e13;
+  const PolygonMap huge =
+      make_polygon_map({{0, 0}, {1e12, 0}, {1e12, 1e12}, {0, 1e12}}, {}, 0.05, wide);
+  SectorOptions o;
+  o.limits = wide;
+  test::expect_error([&] { compute_sectors(huge, o); }, {"compute_sectors", "--max-cells"});
+  const PolygonMap room = make_polygon_map({{0, 0}, {6, 0}, {6, 4}, {0, 4}}, {});
+  o.limits.max_memory_mb = 1;  // 120 x 80 cells of 32 bytes: 0.3 MB fits
+  EXPECT_EQ(compute_sectors(room, o).sectors.size(), 1u);
+  o.cell_m = 0.01;  // 600 x 400 cells: 7.7 MB does not
+  test::expect_error([&] { compute_sectors(room, o); }, {"compute_sectors", "--max-memory-mb"});
+}
+
 }  // namespace
 }  // namespace gridloc
