@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "gridloc/grids/error.hpp"
 
@@ -45,39 +48,89 @@ std::string point_text(const Eigen::Vector2d& p) {
   return s.str();
 }
 
+/// The first repeated vertex of ring[0, count): (j, i) with j < i, i the smallest index that
+/// repeats an earlier vertex and j the first vertex it repeats; none when i == 0. Sorting
+/// makes it O(n log n) (the vertices must be finite).
+std::pair<std::size_t, std::size_t> first_repeat(const Polygon& ring, std::size_t count) {
+  std::vector<std::size_t> order(count);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
+    const Eigen::Vector2d &u = ring[p], &v = ring[q];
+    return u.x() != v.x() ? u.x() < v.x() : u.y() != v.y() ? u.y() < v.y() : p < q;
+  });
+  std::pair<std::size_t, std::size_t> first{0, 0};
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    // Within a group of equal vertices sorted by index, the first two are its earliest repeat.
+    const bool starts_repeat =
+        ring[order[k]] == ring[order[k - 1]] && (k < 2 || ring[order[k - 1]] != ring[order[k - 2]]);
+    if (starts_repeat && (first.second == 0 || order[k] < first.second)) {
+      first = {order[k - 1], order[k]};
+    }
+  }
+  return first;
+}
+
+/// Vertices: finite and none repeated, reported in the order a vertex-by-vertex scan meets them.
+void check_vertices(const Polygon& ring, const std::string& name) {
+  std::size_t finite = 0;
+  while (finite < ring.size() && ring[finite].allFinite()) ++finite;
+  const auto [j, i] = first_repeat(ring, finite);
+  if (i > 0) {
+    throw Error(name + " repeats vertex " + point_text(ring[i]) + " (vertices " +
+                std::to_string(j) + " and " + std::to_string(i) +
+                "); only the closing vertex may repeat the first");
+  }
+  if (finite < ring.size()) {
+    throw Error(name + " vertex " + std::to_string(finite) + " is not finite");
+  }
+}
+
+/// The first pair of non-adjacent edges (i, j), i < j, that meet, in lexicographic order;
+/// (n, n) when none do. A sweep over the edges sorted by their smallest x compares only edges
+/// whose boxes overlap (O(n log n) for the usual maps, quadratic only for edges stacked in x).
+std::pair<std::size_t, std::size_t> first_crossing(const Polygon& ring) {
+  const std::size_t n = ring.size();
+  const auto lo_x = [&](std::size_t e) { return std::min(ring[e].x(), ring[(e + 1) % n].x()); };
+  const auto hi_x = [&](std::size_t e) { return std::max(ring[e].x(), ring[(e + 1) % n].x()); };
+  const auto lo_y = [&](std::size_t e) { return std::min(ring[e].y(), ring[(e + 1) % n].y()); };
+  const auto hi_y = [&](std::size_t e) { return std::max(ring[e].y(), ring[(e + 1) % n].y()); };
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) {
+    return lo_x(p) != lo_x(q) ? lo_x(p) < lo_x(q) : p < q;
+  });
+  std::pair<std::size_t, std::size_t> first{n, n};
+  for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t q = p + 1; q < n && lo_x(order[q]) <= hi_x(order[p]); ++q) {
+      const std::size_t i = std::min(order[p], order[q]), j = std::max(order[p], order[q]);
+      if (j < i + 2 || (i == 0 && j == n - 1)) continue;  // adjacent edges share a vertex
+      if (lo_y(i) > hi_y(j) || lo_y(j) > hi_y(i) || std::pair{i, j} >= first) continue;
+      if (segments_meet(ring[i], ring[(i + 1) % n], ring[j], ring[(j + 1) % n])) first = {i, j};
+    }
+  }
+  return first;
+}
+
 /// The checks of one ring on its own.
 void check_ring(const Polygon& ring, const std::string& name) {
   if (ring.size() < 3) {
     throw Error(name + " has " + std::to_string(ring.size()) + " vertices, needs at least 3");
   }
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    if (!ring[i].allFinite()) {
-      throw Error(name + " vertex " + std::to_string(i) + " is not finite");
-    }
-    for (std::size_t j = 0; j < i; ++j) {
-      if (ring[i] == ring[j]) {
-        throw Error(name + " repeats vertex " + point_text(ring[i]) + " (vertices " +
-                    std::to_string(j) + " and " + std::to_string(i) +
-                    "); only the closing vertex may repeat the first");
-      }
-    }
-  }
+  check_vertices(ring, name);
   const std::size_t n = ring.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d &a = ring[i], &b = ring[(i + 1) % n];
-    // The next edge folding back onto this one.
-    const Eigen::Vector2d& c = ring[(i + 2) % n];
+  const auto [i, j] = first_crossing(ring);
+  // An edge folding back onto the next one, met by an edge-by-edge scan before edge i's
+  // crossings.
+  for (std::size_t k = 0; k < n && k <= i; ++k) {
+    const Eigen::Vector2d &a = ring[k], &b = ring[(k + 1) % n], &c = ring[(k + 2) % n];
     if (orient(a, b, c) == 0.0 && (b - a).dot(c - b) < 0.0) {
       throw Error(name + " is not simple: it folds back at vertex " + point_text(b));
     }
-    for (std::size_t j = i + 2; j < n; ++j) {
-      if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
-      if (segments_meet(a, b, ring[j], ring[(j + 1) % n])) {
-        throw Error(name + " is not simple: edges " + std::to_string(i) + " " + point_text(a) +
-                    "-" + point_text(b) + " and " + std::to_string(j) + " " + point_text(ring[j]) +
-                    "-" + point_text(ring[(j + 1) % n]) + " cross");
-      }
-    }
+  }
+  if (i < n) {
+    throw Error(name + " is not simple: edges " + std::to_string(i) + " " + point_text(ring[i]) +
+                "-" + point_text(ring[(i + 1) % n]) + " and " + std::to_string(j) + " " +
+                point_text(ring[j]) + "-" + point_text(ring[(j + 1) % n]) + " cross");
   }
   if (signed_area2(ring) == 0.0) throw Error(name + " has zero area");
 }
