@@ -62,6 +62,10 @@ void check_extent(const MapMetadata& meta, int width, int height, const std::str
 
 static MapMetadata parse_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
   YAML::Node root;
+  if (check_input_file(yaml_path, "map YAML", limits) > kMaxMapYamlBytes) {
+    fail(yaml_path, "too large for a map_server YAML (it holds a few keys; at most " +
+                        std::to_string(kMaxMapYamlBytes) + " bytes are read)");
+  }
   const std::string text = read_input_file(yaml_path, "map YAML", limits);
   try {
     root = YAML::Load(text);

@@ -11,9 +11,14 @@
 #include <vector>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
 
 namespace gridloc {
 namespace {
+
+/// Bytes of a polygon map file allowed per vertex of limits.max_vertices (a vertex written
+/// with 17 digits and comments takes well under this).
+constexpr double kYamlBytesPerVertex = 256.0;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
@@ -328,6 +333,8 @@ bool is_polygon_map_file(const std::string& path, const ResourceLimits& limits) 
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".yaml" && ext != ".yml") return false;
   try {
+    // Only a polygon map can be larger than any map_server YAML: its loader checks the size.
+    if (check_input_file(path, "map YAML", limits) > kMaxMapYamlBytes) return true;
     const YAML::Node root = YAML::Load(read_input_file(path, "map YAML", limits));
     return root.IsMap() && root["boundary"];
   } catch (const YAML::Exception&) {
@@ -338,6 +345,13 @@ bool is_polygon_map_file(const std::string& path, const ResourceLimits& limits) 
 }
 
 PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limits) {
+  // YAML parsing takes about 65 bytes of memory per byte of the file: the file is bounded by
+  // what the vertex limit allows before it is parsed.
+  const double bytes = static_cast<double>(check_input_file(path, "polygon map", limits));
+  check_limit(bytes, kYamlBytesPerVertex * limits.max_vertices + kMaxMapYamlBytes,
+              "polygon map " + path + " (" + std::to_string(int(kYamlBytesPerVertex)) +
+                  " bytes of YAML per vertex allowed)",
+              "bytes", LimitNames::vertices);
   const std::string text = read_input_file(path, "polygon map", limits);
   YAML::Node root;
   try {

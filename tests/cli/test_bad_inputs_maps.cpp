@@ -156,6 +156,21 @@ const std::vector<BadInputCase> kMapCases = {
      "sectors --polygons {dir}/p.yaml",
      {"p.yaml", "20000 vertices", "--max-vertices"},
      [](const TempDir& dir) { dir.write("p.yaml", many_vertices(20000)); }},
+    {"PolygonFileTooLarge",
+     {},
+     "sectors --polygons {dir}/p.yaml",
+     {"p.yaml", "bytes", "--max-vertices"},
+     [](const TempDir& dir) {
+       dir.write("p.yaml", square_polygon("4") + std::string(4 << 20, '#'));
+     }},
+    {"MapYamlTooLarge",
+     {kReadings},
+     "localize --global --map {dir}/m.txt --readings {dir}/readings.json",
+     {"m.txt", "too large for a map_server YAML"},
+     [](const TempDir& dir) {
+       dir.write("m.txt",
+                 "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n" + std::string(2 << 20, '#'));
+     }},
     // 7. directories where files belong
     {"MapYamlIsADirectory",
      {kReadings},

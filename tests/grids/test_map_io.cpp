@@ -516,6 +516,12 @@ TEST(MapIoLimits, CoordinatesBeyondTheLimitAreRefused) {
   EXPECT_EQ(load_ros_map(corner, wide).width(), 4);
 }
 
+TEST(MapIoLimits, OversizedYamlIsRefusedBeforeParsing) {
+  TempDir dir;
+  const std::string p = dir.write("m.yaml", yaml("m.pgm") + std::string(kMaxMapYamlBytes, '#'));
+  expect_error([&] { load_ros_map(p); }, {p, "too large for a map_server YAML"});
+}
+
 TEST(MapIoLimits, DirectoriesAreNamed) {
   TempDir dir;
   std::filesystem::create_directory(dir.file("d.yaml"));

@@ -164,6 +164,18 @@ TEST(PolygonMapLimits, ScanlineRasterMatchesThePointTest) {
   }
 }
 
+TEST(PolygonMapLimits, FileSizeIsBoundedByTheVertexLimit) {
+  // YAML parsing takes ~65 bytes of memory per byte: the file is checked before it is parsed.
+  test::TempDir dir;
+  ResourceLimits limits;
+  limits.max_vertices = 10;
+  const std::string small = "boundary: [[0, 0], [4, 0], [4, 3], [0, 3], [0, 0]]\n";
+  const std::string p = dir.write("p.yaml", small + std::string(2 << 20, '#'));
+  test::expect_error([&] { load_polygon_map(p, limits); }, {p, "bytes", "--max-vertices"});
+  EXPECT_TRUE(is_polygon_map_file(p, limits));  // larger than any map_server YAML
+  EXPECT_EQ(load_polygon_map(dir.write("q.yaml", small), limits).boundary.size(), 4u);
+}
+
 TEST(PolygonMapLimits, DirectoryIsNamed) {
   test::TempDir dir;
   std::filesystem::create_directory(dir.file("p.yaml"));

@@ -1,5 +1,6 @@
 #pragma once
 /// Loading ROS map_server maps (YAML + PGM/PNG image).
+#include <cstdint>
 #include <string>
 
 #include "gridloc/grids/grid.hpp"
@@ -20,8 +21,13 @@ struct MapMetadata {
   MapMode mode = MapMode::Trinary;
 };
 
+/// The largest map_server YAML file read (bytes): it holds a few keys, and YAML parsing takes
+/// about 65 bytes of memory per byte of the file, so a larger one is refused before parsing.
+inline constexpr std::uintmax_t kMaxMapYamlBytes = 1 << 20;
+
 /// Reads and validates a map_server YAML file; throws gridloc::Error naming the file and key.
-/// The file is checked first (check_input_file: missing, a directory, over max_file_mb); the
+/// The file is checked first (check_input_file: missing, a directory, over max_file_mb, over
+/// kMaxMapYamlBytes); the
 /// resolution and each origin coordinate must not exceed limits.max_coordinate_m.
 MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits& limits = {});
 
