@@ -181,7 +181,7 @@ void OctomapArgs::add_to(CLI::App* cmd) {
 }
 
 OccupancyMap load_map(const std::string& path, const OctomapSlice& slice) {
-  if (is_octomap_path(path)) return load_octomap(path, slice);
+  if (is_octomap_path(path)) return load_octomap(path, slice, limits());
   // A polygon map (a YAML file with a `boundary`) is rasterized at its own resolution.
   if (is_polygon_map_file(path, limits())) {
     return rasterize_polygon_map(load_polygon_map(path, limits()), 0.0, 0.5, limits());

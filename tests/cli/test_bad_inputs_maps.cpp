@@ -187,16 +187,7 @@ const std::vector<BadInputCase> kMapCases = {
      "sectors --polygons {dir}/p.yaml",
      {"p.yaml", "is a directory"},
      [](const TempDir& dir) { std::filesystem::create_directory(dir.file("p.yaml")); }},
-    // 8. a map smaller than one search cell
-    {"OneCellMapGlobal",
-     {kReadings, map_yaml("one.pgm"), {"one.pgm", "P5\n1 1\n255\n\xfe"}},
-     kLocalize,
-     {"smaller than one cell of the search grid", "--step-xy"}},
-    {"StepLargerThanMap",
-     {kReadings},
-     "localize --map {maps}/room_rect.yaml --readings {dir}/readings.json --prior 2,1.5,0.5 "
-     "--step-xy 1e3",
-     {"smaller than one cell of the search grid", "1000 m"}},
+    // 8. a map smaller than one search cell: in test_bad_inputs_sensors.cpp (OneCellMapGlobal)
 };
 
 class BadInputMaps : public ::testing::TestWithParam<BadInputCase> {};

@@ -125,7 +125,7 @@ const std::vector<BadInputCase> kSensorCases = {
     {"StepXyCoarserThanTheMap",
      {kReadings},
      kLocalize + "--readings {dir}/readings.json --global --step-xy 1e3",
-     {"resolution 1000 m is coarser than the map"}},
+     {"resolution 1000 m", "--step-xy", "coarser than the map"}},
     {"OneCellMapGlobal",
      {kReadings,
       {"one.yaml",

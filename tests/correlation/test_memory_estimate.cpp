@@ -149,7 +149,7 @@ TEST(MemoryEstimate, AResolutionCoarserThanTheMapIsNamed) {
   CorrelationOptions options;
   options.resolution = 1e3;
   test::expect_error([&] { CorrelationEstimator(room(), ring, options); },
-                     {"resolution 1000 m is coarser than the map (5 x 4 m)"});
+                     {"resolution 1000 m", "coarser than the map (5 x 4 m)"});
   options.resolution = 0.1;
   const OccupancyMap one = test::walled_room(1, 1, 0.05, Eigen::Vector2d::Zero());
   test::expect_error([&] { CorrelationEstimator(one, ring, options); },

@@ -63,10 +63,13 @@ void check(const CorrelationOptions& options) {
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
                      const SearchSize& search) {
   const double width_m = map.width * map.resolution, height_m = map.height * map.resolution;
-  if (options.resolution > std::max(width_m, height_m)) {
+  // Every lattice pose is a search cell's centre: the first lies inside the map only if one
+  // search cell fits in it (else the answer would lie outside the map).
+  if (options.resolution > std::min(width_m, height_m)) {
     std::ostringstream m;
-    m << "correlation options: resolution " << options.resolution << " m is coarser than the map ("
-      << width_m << " x " << height_m << " m); the search grid would be a single cell";
+    m << "correlation options: resolution " << options.resolution << " m (the search step, "
+      << "gridloc --step-xy) is coarser than the map (" << width_m << " x " << height_m
+      << " m): one search cell must fit in it; use a smaller step or a larger map";
     throw Error(m.str());
   }
   const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
@@ -209,17 +212,6 @@ Lattice CorrelationEstimator::lattice(const Observation& observation,
     throw Error(m.str());
   }
 
-  // Every lattice pose is a search cell's centre: the first lies inside the map only if one
-  // search cell fits in it (else the pose of the answer would lie outside the map).
-  const double map_x = map_.width() * map_.geometry.resolution;
-  const double map_y = map_.height() * map_.geometry.resolution;
-  if (res > std::min(map_x, map_y)) {
-    std::ostringstream m;
-    m << "the map (" << map_x << " x " << map_y << " m) is smaller than one cell of the search "
-      << "grid (" << res << " m, the search step step_xy, gridloc --step-xy): use a smaller "
-      << "step or a larger map";
-    throw Error(m.str());
-  }
   const PaddedGrid& finest = levels_.front();
   const Pose2 prior = map_.geometry.to_grid_frame(window.center);
   const Cell c = {static_cast<int>(std::floor(prior.x / res)),

@@ -245,8 +245,9 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   for (int l = 0; l < built; ++l) {
     const double res = level_resolution(options_.resolution, l);
     const int pad = static_cast<int>(std::ceil(reach_ / res)) + 3;
-    levels_.push_back(pad_grid(make_global_grid(map_, res, options_.global, options_.field), pad,
-                               options_.arc_rule));
+    levels_.push_back(
+        pad_grid(make_global_grid(map_, res, options_.global, options_.field, options_.limits), pad,
+                 options_.arc_rule));
   }
   if (options_.strategy == SearchStrategy::BranchAndBound) {
     // Deep enough for a window over the whole map; small windows start lower.
