@@ -1,0 +1,10 @@
+// Fuzz harness: a full OctoMap tree (.ot) read by load_octomap (grids/src/octomap_io.cpp,
+// AbstractOcTree::read) and sliced with the default band.
+#include "fuzz_support.hpp"
+#include "gridloc/grids/octomap_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = gridloc::fuzz::write_file("tree.ot", data, size);
+  gridloc::fuzz::expect_clean([&] { (void)gridloc::load_octomap(path); });
+  return 0;
+}

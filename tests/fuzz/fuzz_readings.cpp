@@ -1,0 +1,11 @@
+// Fuzz harness: a readings JSON file read by load_readings and load_firings
+// (sensors/src/readings_io.cpp).
+#include "fuzz_support.hpp"
+#include "gridloc/sensors/readings_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = gridloc::fuzz::write_file("readings.json", data, size);
+  gridloc::fuzz::expect_clean([&] { (void)gridloc::load_readings(path); });
+  gridloc::fuzz::expect_clean([&] { (void)gridloc::load_firings(path); });
+  return 0;
+}
