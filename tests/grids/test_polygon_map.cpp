@@ -88,6 +88,19 @@ TEST(PolygonMap, BadRingsAreNamed) {
                      {"obstacle 0"});
 }
 
+// Fuzz regression (issue 14 item 3): a valid map 1e12 m wide overflowed the int cast of its
+// cell count before the size check (UB; then "cannot create std::vector larger than
+// max_size()"). It must get the size check's error.
+TEST(PolygonMap, HugeMapIsRefusedBeforeItsCellCountOverflows) {
+  test::TempDir dir;
+  const std::string path =
+      dir.write("p.yaml", "boundary: [[0, 0], [1e12, 0], [0, 1e12], [0, 0]]\n");
+  const PolygonMap m = load_polygon_map(path);
+  test::expect_error(
+      [&] { rasterize_polygon_map(m); },
+      {"rasterize_polygon_map", "2e+13 x 2e+13 cells is too large", "coarser resolution"});
+}
+
 TEST(PolygonMap, BundledPolygonMapsLoad) {
   for (const char* name : {"room_rect", "room_l", "room_furnished", "office"}) {
     const PolygonMap m = load_polygon_map(test::maps_dir() + "/polygons/" + name + ".yaml");
