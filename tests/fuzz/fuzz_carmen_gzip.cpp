@@ -6,7 +6,8 @@
 #include "gridloc/sensors/carmen_log.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("fuzz.log.gz", data, size);
+  const gridloc::fuzz::ScratchFile file("fuzz.log.gz", data, size);
+  const std::string path = file.path();
   gridloc::CarmenOptions options;
   options.max_decompressed_bytes = std::size_t{64} << 20;
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_carmen_log(path, options); });

@@ -3,7 +3,8 @@
 #include "gridloc/grids/map_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("map.yaml", data, size);
+  const gridloc::fuzz::ScratchFile file("map.yaml", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_map_metadata(path); });
   return 0;
 }

@@ -4,7 +4,8 @@
 #include "gridloc/grids/octomap_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("tree.bt", data, size);
+  const gridloc::fuzz::ScratchFile file("tree.bt", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_octomap(path); });
   return 0;
 }

@@ -4,7 +4,8 @@
 #include "gridloc/grids/polygon_map.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("polygons.yaml", data, size);
+  const gridloc::fuzz::ScratchFile file("polygons.yaml", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] {
     const gridloc::PolygonMap map = gridloc::load_polygon_map(path);
     (void)gridloc::rasterize_polygon_map(map);

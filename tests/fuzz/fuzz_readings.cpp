@@ -4,7 +4,8 @@
 #include "gridloc/sensors/readings_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("readings.json", data, size);
+  const gridloc::fuzz::ScratchFile file("readings.json", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_readings(path); });
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_firings(path); });
   return 0;

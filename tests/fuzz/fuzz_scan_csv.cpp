@@ -4,7 +4,8 @@
 #include "gridloc/sensors/range_scan.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("scan.csv", data, size);
+  const gridloc::fuzz::ScratchFile file("scan.csv", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_scan_csv(path, 8.0); });
   return 0;
 }

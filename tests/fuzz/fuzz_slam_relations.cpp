@@ -4,7 +4,8 @@
 #include "gridloc/sensors/slam_relations.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("fuzz.relations", data, size);
+  const gridloc::fuzz::ScratchFile file("fuzz.relations", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_slam_relations(path); });
   return 0;
 }

@@ -3,7 +3,8 @@
 #include "gridloc/sensors/sonar_ring.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = gridloc::fuzz::write_file("ring.yaml", data, size);
+  const gridloc::fuzz::ScratchFile file("ring.yaml", data, size);
+  const std::string path = file.path();
   gridloc::fuzz::expect_clean([&] { (void)gridloc::load_sonar_ring(path); });
   return 0;
 }

@@ -18,36 +18,45 @@ namespace gridloc::fuzz {
 
 namespace fs = std::filesystem;
 
-/// This process's scratch folder: /dev/shm (memory, no disk wear) when present, else the
-/// system temp folder; created on first use and removed at exit. One per process, so fork
-/// mode and parallel harnesses never share a file.
-inline const fs::path& scratch_dir() {
-  static const fs::path dir = [] {
-    const fs::path base =
-        fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
-    fs::path made = base / ("gridloc_fuzz_" + std::to_string(::getpid()));
-    fs::create_directories(made);
-    std::atexit([] {
-      std::error_code ec;
-      fs::remove_all(scratch_dir(), ec);
-    });
-    return made;
-  }();
-  return dir;
-}
-
-/// Writes `size` bytes to `name` in the scratch folder (replacing it) and returns its path.
-inline std::string write_file(const std::string& name, const std::uint8_t* data, std::size_t size) {
-  const fs::path path = scratch_dir() / name;
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  out.close();
-  if (!out) {
-    std::fprintf(stderr, "fuzz harness: cannot write %s\n", path.c_str());
-    std::abort();
+/// A file of this process in /dev/shm (memory, no disk wear; the system temp folder when
+/// /dev/shm is absent), `gridloc_fuzz_<pid>_<name>`, holding the fuzzed bytes and removed when
+/// the run ends. Files, not a folder removed at exit: libFuzzer's fork-mode children end without
+/// running exit handlers, and a crash leaves only the input it crashed on.
+class ScratchFile {
+ public:
+  ScratchFile(const std::string& name, const std::uint8_t* data, std::size_t size)
+      : path_(folder() / file_name(name)) {
+    std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    out.close();
+    if (!out) {
+      std::fprintf(stderr, "fuzz harness: cannot write %s\n", path_.c_str());
+      std::abort();
+    }
   }
-  return path.string();
-}
+  ScratchFile(const std::string& name, std::string_view text)
+      : ScratchFile(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size()) {}
+  ~ScratchFile() {
+    std::error_code ec;
+    fs::remove(path_, ec);
+  }
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+
+  /// The file's path, as a string.
+  std::string path() const { return path_.string(); }
+  /// The name this process gives `name` (unique per process, so parallel harnesses and fork
+  /// mode's children never share a file).
+  static std::string file_name(const std::string& name) {
+    return "gridloc_fuzz_" + std::to_string(::getpid()) + "_" + name;
+  }
+
+ private:
+  static fs::path folder() {
+    return fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
+  }
+  fs::path path_;
+};
 
 /// The fuzzed bytes as text, for parsers that take a stream or a string.
 inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
