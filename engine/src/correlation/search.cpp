@@ -176,12 +176,19 @@ PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global) {
 
 namespace {
 
+// An AVX2 clone and the default, picked once by an ifunc resolver; a sanitizer build
+// (GRIDLOC_SANITIZE, which defines GRIDLOC_NO_CLONES) keeps the default only: the resolver
+// runs before ThreadSanitizer's runtime is ready.
+#if defined(GRIDLOC_NO_CLONES)
+#define GRIDLOC_AVX2_CLONES
+#else
+#define GRIDLOC_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 /// point_cell() of n points (centre 0) in one loop the compiler vectorizes: the same
 /// operations in the same order, so the same cells bit for bit (no FMA in either clone).
-__attribute__((target_clones("avx2", "default"))) void point_cells(const double* x, const double* y,
-                                                                   std::size_t n, double c,
-                                                                   double s, double inv, int* xs,
-                                                                   int* ys) {
+GRIDLOC_AVX2_CLONES void point_cells(const double* x, const double* y, std::size_t n, double c,
+                                     double s, double inv, int* xs, int* ys) {
   for (std::size_t k = 0; k < n; ++k) {
     xs[k] = floor_to_int((c * x[k] - s * y[k]) * inv + 0.5);
     ys[k] = floor_to_int((s * x[k] + c * y[k]) * inv + 0.5);
