@@ -8,8 +8,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "gridloc/grids/error.hpp"
 #include "gridloc/grids/radix_sort.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 
@@ -17,11 +21,18 @@ namespace gridloc::detail {
 
 class Canvas {
  public:
-  /// The calling thread's canvas, ready for cells within +-`half` (at least) of the centre at
-  /// `resolution` (m); it holds no cell from a previous call.
-  static Canvas& for_this_thread(int half, double resolution) {
+  /// Widest canvas (cells): its cell indices, side * side of them, stay ints.
+  static constexpr int kMaxSide = 46339;
+
+  /// The calling thread's canvas, ready for cells within +-(ceil(`reach_cells`) + `margin`)
+  /// (at least) of the robot's cell at `resolution` (m), the robot centre lying `centre` (m)
+  /// from that cell's centre; it holds no cell from a previous call. Where a local grid's
+  /// centre enters: gridloc::Error if it is not finite, or if the canvas would be wider than
+  /// kMaxSide cells.
+  static Canvas& for_this_thread(double reach_cells, int margin, const Eigen::Vector2d& centre,
+                                 double resolution) {
     thread_local Canvas canvas;
-    canvas.prepare(half, resolution);
+    canvas.prepare(half_width(reach_cells, margin, centre, resolution), resolution);
     return canvas;
   }
 
@@ -105,6 +116,23 @@ class Canvas {
   }
 
  private:
+  /// ceil(reach_cells) + margin, checked (see for_this_thread).
+  static int half_width(double reach_cells, int margin, const Eigen::Vector2d& centre,
+                        double resolution) {
+    if (!centre.allFinite()) {
+      throw Error("local grid centre must be finite, got (" + std::to_string(centre.x()) + ", " +
+                  std::to_string(centre.y()) + ")");
+    }
+    const double half = std::ceil(reach_cells) + margin;
+    if (!(half <= (kMaxSide - 1) / 2)) {  // NaN fails too
+      throw Error("local grid reaching " + std::to_string(reach_cells * resolution) +
+                  " m at resolution " + std::to_string(resolution) +
+                  " m needs a canvas wider than the " + std::to_string(kMaxSide) +
+                  " cells allowed");
+    }
+    return static_cast<int>(half);
+  }
+
   void prepare(int half, double resolution) {
     if (!touched_.empty()) collect(0.0);  // a previous call that threw left cells behind
     res_ = resolution;

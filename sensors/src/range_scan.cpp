@@ -197,7 +197,7 @@ SparseLocalGrid rasterize_points(const ScanPoints& points, double theta, double 
   const double inv = 1.0 / resolution;
   const double cx = centre.x() * inv, cy = centre.y() * inv;
   detail::Canvas& canvas = detail::Canvas::for_this_thread(
-      static_cast<int>(std::ceil(points.max_norm * inv + std::hypot(cx, cy))) + 2, resolution);
+      points.max_norm * inv + std::hypot(cx, cy), 2, centre, resolution);
   const double c = std::cos(theta), s = std::sin(theta);
   for (std::size_t k = points.hit_count; k < points.size(); ++k) {
     const Eigen::Vector2i cell = point_cell(points, k, c, s, inv, cx, cy);
@@ -222,7 +222,7 @@ SparseLocalGrid rasterize_scan(const RangeScan& scan, double theta, double resol
   const double inv = 1.0 / resolution;
   const double x0 = centre.x() * inv, y0 = centre.y() * inv;
   detail::Canvas& canvas = detail::Canvas::for_this_thread(
-      static_cast<int>(std::ceil(scan.max_range * inv + std::hypot(x0, y0))) + 2, resolution);
+      scan.max_range * inv + std::hypot(x0, y0), 2, centre, resolution);
   thread_local std::vector<int> crossed;
   for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
     const bool hit = scan.ranges[k] < scan.max_range;

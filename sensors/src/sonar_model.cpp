@@ -114,8 +114,7 @@ SparseLocalGrid rasterize_oriented(const SonarRing& ring, const std::vector<doub
   check_resolution(resolution);
   std::size_t active = 0;  // sonars that draw a cone: the footprint's N
   Canvas& canvas = Canvas::for_this_thread(
-      static_cast<int>(std::ceil((ring.reach() + 2 * resolution + centre.norm()) / resolution)) + 2,
-      resolution);
+      (ring.reach() + 2 * resolution + centre.norm()) / resolution, 2, centre, resolution);
   for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
     if (i < rejected.size() && rejected[i]) continue;  // an echo filter rejected it: no evidence
     add_cone(canvas, ring.sonars[i], ranges[i], theta, centre, options);
@@ -152,8 +151,7 @@ SparseLocalGrid rasterize_turned(const SonarRing& ring, const std::vector<double
   const SparseLocalGrid upright =
       rasterize_oriented(ring, ranges, 0.0, resolution, Eigen::Vector2d::Zero(), options, rejected);
   Canvas& canvas = Canvas::for_this_thread(
-      static_cast<int>(std::ceil((ring.reach() + 3 * resolution + centre.norm()) / resolution)) + 2,
-      resolution);
+      (ring.reach() + 3 * resolution + centre.norm()) / resolution, 2, centre, resolution);
   const double c = std::cos(theta), s = std::sin(theta);
   // Write into the arc/free layers by sign so that "later value wins" holds per cell.
   for (std::size_t k = 0; k < upright.size(); ++k) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <random>
@@ -42,7 +43,8 @@ TEST(RangeScan, OneBeamHasAnEndCellAndMinusOneBeforeIt) {
   for (double angle : {0.0, 0.4, 1.9, -2.7}) {
     const RangeScan scan{{angle}, {3.0}, 8.0};
     for (ScanModel model : {ScanModel::Rays, ScanModel::Samples}) {
-      const SparseLocalGrid f = rasterize_scan(scan, 0.25, kRes, {}, {model, 4});
+      const SparseLocalGrid f =
+          rasterize_scan(scan, 0.25, kRes, Eigen::Vector2d::Zero(), {model, 4});
       EXPECT_NEAR(sum_of(f, false), -1.0, 1e-5) << angle;  // the free part shares -1
     }
     const SparseLocalGrid g = rasterize_scan(scan, 0.25, kRes);  // hits: the end cell only
@@ -62,11 +64,13 @@ TEST(RangeScan, OneBeamHasAnEndCellAndMinusOneBeforeIt) {
 
 TEST(RangeScan, NoReturnGivesFreeSpaceToMaxRange) {
   const RangeScan scan{{0.0, 1.0}, {8.0, 2.0}, 8.0};
-  const SparseLocalGrid g = rasterize_scan(scan, 0.0, kRes, {}, {ScanModel::Rays});
+  const SparseLocalGrid g =
+      rasterize_scan(scan, 0.0, kRes, Eigen::Vector2d::Zero(), {ScanModel::Rays});
   EXPECT_DOUBLE_EQ(sum_of(g, true), 1.0);  // only the second beam hits
   EXPECT_GE(g.extent(), 79);               // the first beam's free cells reach 8 m
   // Samples: the last of 4 lies at 7/8 of the range.
-  const SparseLocalGrid s = rasterize_scan(scan, 0.0, kRes, {}, {ScanModel::Samples, 4});
+  const SparseLocalGrid s =
+      rasterize_scan(scan, 0.0, kRes, Eigen::Vector2d::Zero(), {ScanModel::Samples, 4});
   EXPECT_EQ(s.extent(), 70);
   EXPECT_NEAR(sum_of(s, false), -2.0, 1e-6);
 }
@@ -97,6 +101,35 @@ TEST(RangeScanErrors, BadScansAreNamed) {
   test::expect_error([] { validate(RangeScan{{0.0}, {NAN}, 8.0}); }, {"NaN"});
   test::expect_error([] { validate(RangeScan{{0.0, 1.0}, {8.0, 9.0}, 8.0}); }, {"no beam"});
   test::expect_error([] { validate(RangeScan{{0.0}, {1.0}, 0.0}); }, {"max range"});
+}
+
+TEST(RangeScanErrors, NonFiniteOrFarCentre) {
+  const RangeScan scan{{0.0, 1.0}, {8.0, 2.0}, 8.0};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& centre : {Eigen::Vector2d(nan, 0.0), Eigen::Vector2d(0.0, -inf)}) {
+    for (ScanModel model : {ScanModel::Rays, ScanModel::Samples, ScanModel::Hits}) {
+      test::expect_error(
+          [&] {
+            (void)rasterize_scan(scan, 0.0, kRes, centre, {model, 4});
+          },
+          {"local grid centre", "finite"});
+    }
+    test::expect_error(
+        [&] {
+          (void)rasterize_points(scan_points(scan, {ScanModel::Hits, 1}), 0.0, kRes, centre);
+        },
+        {"local grid centre", "finite"});
+  }
+  // Finite but far: the canvas's cell indices would overflow.
+  test::expect_error(
+      [&] {
+        (void)rasterize_scan(scan, 0.0, kRes, {1e300, 0.0});
+      },
+      {"canvas", "46339"});
+  test::expect_error([&] { (void)rasterize_scan(scan, 0.0, 1e-5); }, {"canvas", "46339"});
+  // A centre within the robot's cell still rasterizes.
+  EXPECT_GT(rasterize_scan(scan, 0.0, kRes, {0.04, -0.03}).size(), 0u);
 }
 
 TEST(RangeScanErrors, CsvInput) {

@@ -152,7 +152,8 @@ TEST(SonarModel, ArcDepthWidensTheArcButKeepsItsMass) {
   const auto ring = one_sonar();
   const SonarModelOptions paper{0.0};
   for (double d : {1.0, 2.5, 4.0}) {
-    const SparseLocalGrid thin = rasterize_oriented(ring, {d}, 0.3, kRes, {}, paper);
+    const SparseLocalGrid thin =
+        rasterize_oriented(ring, {d}, 0.3, kRes, Eigen::Vector2d::Zero(), paper);
     const SparseLocalGrid deep = rasterize_oriented(ring, {d}, 0.3, kRes);
     const auto thin_arc = positive_cells(thin), deep_arc = positive_cells(deep);
     EXPECT_GT(deep_arc.size(), thin_arc.size()) << d;
@@ -169,8 +170,8 @@ TEST(SonarModel, ArcIsASimpleEightConnectedChain) {
     for (double d : {0.5, 1.0, 2.0, 3.7, 5.5}) {
       for (int theta_deg = -180; theta_deg < 180; theta_deg += 7) {
         // Seed 001's one-cell arc (arc depth 0).
-        const SparseLocalGrid g =
-            rasterize_oriented(*ring, {d}, deg2rad(theta_deg), kRes, {}, SonarModelOptions{0.0});
+        const SparseLocalGrid g = rasterize_oriented(
+            *ring, {d}, deg2rad(theta_deg), kRes, Eigen::Vector2d::Zero(), SonarModelOptions{0.0});
         EXPECT_TRUE(is_simple_8_chain(positive_cells(g)))
             << "range " << d << " theta " << theta_deg << " radius " << ring->sonars[0].radius;
       }
@@ -182,8 +183,8 @@ TEST(SonarModel, ArcIsASimpleChainAtFinerResolution) {
   const auto ring = one_sonar();
   for (double d : {0.8, 2.0, 4.5}) {
     for (int theta_deg = 0; theta_deg < 90; theta_deg += 11) {
-      const SparseLocalGrid g =
-          rasterize_oriented(ring, {d}, deg2rad(theta_deg), 0.05, {}, SonarModelOptions{0.0});
+      const SparseLocalGrid g = rasterize_oriented(ring, {d}, deg2rad(theta_deg), 0.05,
+                                                   Eigen::Vector2d::Zero(), SonarModelOptions{0.0});
       EXPECT_TRUE(is_simple_8_chain(positive_cells(g))) << d << " " << theta_deg;
     }
   }
@@ -321,6 +322,23 @@ TEST(SonarModelErrors, NonPositiveResolution) {
     test::expect_error([&] { rasterize_oriented(ring, {2.0}, 0.0, r); }, {"resolution"});
     test::expect_error([&] { rasterize(ring, {2.0}, 0.0, r, LocalModel::Turned); }, {"resolution"});
   }
+}
+
+TEST(SonarModelErrors, NonFiniteOrFarCentre) {
+  const auto ring = one_sonar();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& centre : {Eigen::Vector2d(nan, 0.0), Eigen::Vector2d(0.0, inf)}) {
+    for (LocalModel model : {LocalModel::Oriented, LocalModel::Turned}) {
+      test::expect_error([&] { rasterize(ring, {2.0}, 0.0, kRes, model, centre); },
+                         {"local grid centre", "finite"});
+    }
+  }
+  test::expect_error(
+      [&] {
+        rasterize(ring, {2.0}, 0.0, kRes, LocalModel::Oriented, {1e300, 0.0});
+      },
+      {"canvas", "46339"});
 }
 
 }  // namespace
