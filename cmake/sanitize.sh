@@ -40,7 +40,12 @@ if [ -n "$symbolizer" ]; then
 fi
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1:print_stacktrace=1"
 export UBSAN_OPTIONS="halt_on_error=1:abort_on_error=1:print_stacktrace=1:report_error_type=1"
-export TSAN_OPTIONS="halt_on_error=1:abort_on_error=1:second_deadlock_stack=1:history_size=4"
+# Third-party reports TSan cannot attribute to gridloc: cmake/tsan-suppressions.txt says why.
+export TSAN_OPTIONS="halt_on_error=1:abort_on_error=1:second_deadlock_stack=1:history_size=4:suppressions=$PWD/cmake/tsan-suppressions.txt"
+# Archer makes OpenMP's synchronization (the engine's parallel loops, libomp under clang)
+# visible to TSan; libomp loads it from OMP_TOOL_LIBRARIES.
+llvm_lib=$(dirname "$(readlink -f "$(command -v clang++)")")/../lib
+if [ -f "$llvm_lib/libarcher.so" ]; then export OMP_TOOL_LIBRARIES="$llvm_lib/libarcher.so"; fi
 
 # Tests left out of the ASan run (ctest -E), each several minutes under ASan on 2 cores and
 # covering no code the rest of the suite does not reach:
