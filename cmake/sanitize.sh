@@ -48,17 +48,19 @@ llvm_lib=$(dirname "$(readlink -f "$(command -v clang++)")")/../lib
 if [ -f "$llvm_lib/libarcher.so" ]; then export OMP_TOOL_LIBRARIES="$llvm_lib/libarcher.so"; fi
 
 # Tests left out of the ASan run (ctest -E): the install test (packaging, not memory safety;
-# its consumer build would also need the sanitizer link flags), and the three slowest
+# its consumer build would also need the sanitizer link flags), the four slowest
 # protocol checks, 1-3 minutes each under ASan on 2 busy cores (measured 2026-12-02), that
 # rerun code the rest of the suite covers on many more trials:
 #   DriveProtocol.ADriveLocalizesAtLeastAsOftenAsTheLastFiring  (188 s: 4 maps x drives)
 #   SampleFreePose.ThrowsWhenNoPoseFits                         (84 s: the sampler's retries)
 #   Evaluation.OrientedThinnedBeatsTurnedRaw                    (65 s: seed 001's protocol)
+#   SectorLocalization.TheSkeletonMatchLocalizesPartialViews    (> 130 s CPU, not finished:
+#                                                               the office's sectors, 24 fixes)
 # and one check that pins a measured borderline outcome, which this build (clang -O1) does
 # not reproduce (no sanitizer report; the correlation's false fixes are 0 here, 1 with the
 # Release g++ build):
 #   SectorEvaluation.EveryEstimatorSeesTheSameTrials
-asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials)$'
+asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials|SectorLocalization\.TheSkeletonMatchLocalizesPartialViews)$'
 
 run_asan() {
   echo "== sanitizers: AddressSanitizer + UndefinedBehaviorSanitizer (build-asan)"
