@@ -48,7 +48,7 @@ llvm_lib=$(dirname "$(readlink -f "$(command -v clang++)")")/../lib
 if [ -f "$llvm_lib/libarcher.so" ]; then export OMP_TOOL_LIBRARIES="$llvm_lib/libarcher.so"; fi
 
 # Tests left out of the ASan run (ctest -E): the install test (packaging, not memory safety;
-# its consumer build would also need the sanitizer link flags), the four slowest
+# its consumer build would also need the sanitizer link flags), the five slowest
 # protocol checks, 1-3 minutes each under ASan on 2 busy cores (measured 2026-12-02), that
 # rerun code the rest of the suite covers on many more trials:
 #   DriveProtocol.ADriveLocalizesAtLeastAsOftenAsTheLastFiring  (188 s: 4 maps x drives)
@@ -56,11 +56,13 @@ if [ -f "$llvm_lib/libarcher.so" ]; then export OMP_TOOL_LIBRARIES="$llvm_lib/li
 #   Evaluation.OrientedThinnedBeatsTurnedRaw                    (65 s: seed 001's protocol)
 #   SectorLocalization.TheSkeletonMatchLocalizesPartialViews    (> 130 s CPU, not finished:
 #                                                               the office's sectors, 24 fixes)
+#   Cli.EvalOnPolygonMapsComparesSectorsAndCorrelation          (> 170 s CPU, not finished:
+#                                                               the sector protocol, as above)
 # and one check that pins a measured borderline outcome, which this build (clang -O1) does
 # not reproduce (no sanitizer report; the correlation's false fixes are 0 here, 1 with the
 # Release g++ build):
 #   SectorEvaluation.EveryEstimatorSeesTheSameTrials
-asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials|SectorLocalization\.TheSkeletonMatchLocalizesPartialViews)$'
+asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials|SectorLocalization\.TheSkeletonMatchLocalizesPartialViews|Cli\.EvalOnPolygonMapsComparesSectorsAndCorrelation)$'
 
 run_asan() {
   echo "== sanitizers: AddressSanitizer + UndefinedBehaviorSanitizer (build-asan)"
