@@ -95,10 +95,12 @@ TEST(PolygonMap, HugeMapIsRefusedBeforeItsCellCountOverflows) {
   test::TempDir dir;
   const std::string path =
       dir.write("p.yaml", "boundary: [[0, 0], [1e12, 0], [0, 1e12], [0, 0]]\n");
-  const PolygonMap m = load_polygon_map(path);
-  test::expect_error(
-      [&] { rasterize_polygon_map(m); },
-      {"rasterize_polygon_map", "2e+13 x 2e+13 cells is too large", "coarser resolution"});
+  test::expect_error([&] { load_polygon_map(path); }, {"--max-coordinate-m"});
+  ResourceLimits wide;
+  wide.max_coordinate_m = 1e13;
+  const PolygonMap m = load_polygon_map(path, wide);
+  test::expect_error([&] { rasterize_polygon_map(m, 0.0, 0.5, wide); },
+                     {"2e+13 x 2e+13", "--max-cells"});
 }
 
 TEST(PolygonMap, BundledPolygonMapsLoad) {
