@@ -1,7 +1,8 @@
 #!/bin/sh
 # Sanitizer stage of CI (.ci/run runs it after the Release tests): the library and the test
 # suite under AddressSanitizer + UndefinedBehaviorSanitizer, then the concurrency test under
-# ThreadSanitizer. Needs clang++ (Debian: clang); without it the stage is skipped.
+# ThreadSanitizer. Needs clang++ (installs Debian's clang, libclang-rt-14-dev and libomp-14-dev
+# when missing); without clang++ the stage is skipped.
 #   cmake/sanitize.sh         # both stages
 #   cmake/sanitize.sh asan    # build-asan only
 #   cmake/sanitize.sh tsan    # build-tsan only
@@ -15,6 +16,21 @@ case "$stage" in
   *) echo "usage: $0 [all|asan|tsan]" >&2; exit 2 ;;
 esac
 
+# clang, its sanitizer and libFuzzer runtimes, and its OpenMP (the engine's parallel loops):
+# installed when missing, as the quick start does; the stage is skipped where apt is not.
+packages="clang libclang-rt-14-dev libomp-14-dev"
+missing=""
+for p in $packages; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ] && command -v apt-get >/dev/null 2>&1; then
+  echo "== sanitizers: installing:$missing"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo=sudo; fi
+  $sudo apt-get update -qq
+  # shellcheck disable=SC2086  # the list is meant to split
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $missing
+fi
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "== sanitizers: clang++ not found, sanitizer stage skipped"
   exit 0
@@ -66,8 +82,9 @@ asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAs
 
 run_asan() {
   echo "== sanitizers: AddressSanitizer + UndefinedBehaviorSanitizer (build-asan)"
-  # --- fuzz: -DGRIDLOC_BUILD_FUZZ=ON goes on this configure line (libFuzzer targets) ---
-  configure build-asan -DGRIDLOC_SANITIZE=address,undefined
+  # With the libFuzzer harnesses (tests/fuzz): their smoke runs (label fuzz, 20 s each) run
+  # in this ctest too.
+  configure build-asan -DGRIDLOC_SANITIZE=address,undefined -DGRIDLOC_BUILD_FUZZ=ON
   cmake --build build-asan -j"$jobs"
   (cd build-asan && ctest --output-on-failure -j"$jobs" -E "$asan_exclude")
 }
