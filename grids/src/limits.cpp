@@ -61,8 +61,10 @@ double check_grid_cells(double width, double height, const ResourceLimits& limit
 }
 
 void check_memory(double bytes, const ResourceLimits& limits, const std::string& what) {
-  check_limit(std::ceil(bytes / (1024.0 * 1024.0)), limits.max_memory_mb,
-              what + " would need about", "MB", LimitNames::memory_mb);
+  const double mb = std::ceil(bytes / (1024.0 * 1024.0));
+  if (mb <= limits.max_memory_mb) return;
+  throw Error(what + " would need about " + num(mb) + " MB, more than the limit of " +
+              num(limits.max_memory_mb) + " MB (raise it with " + LimitNames::memory_mb + ")");
 }
 
 std::uintmax_t check_input_file(const std::string& path, const std::string& what,
@@ -74,8 +76,11 @@ std::uintmax_t check_input_file(const std::string& path, const std::string& what
   if (!fs::is_regular_file(status)) throw Error(path + ": not a regular file (a " + what + ")");
   const std::uintmax_t bytes = fs::file_size(path, ec);
   if (ec) throw Error(path + ": cannot read the size of the " + what + ": " + ec.message());
-  check_limit(std::ceil(static_cast<double>(bytes) / (1024.0 * 1024.0)), limits.max_file_mb,
-              path + ": the " + what + " is", "MB", LimitNames::file_mb);
+  const double mb = std::ceil(static_cast<double>(bytes) / (1024.0 * 1024.0));
+  if (mb > limits.max_file_mb) {
+    throw Error(path + ": the " + what + " is " + num(mb) + " MB, more than the limit of " +
+                num(limits.max_file_mb) + " MB (raise it with " + LimitNames::file_mb + ")");
+  }
   return bytes;
 }
 

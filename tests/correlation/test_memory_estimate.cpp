@@ -81,7 +81,7 @@ TEST(MemoryEstimate, AFineResolutionIsRefusedBeforeItIsBuilt) {
                      {"global grid at 0.0001 m", "cells exceeds the limit", "--max-cells"});
   options.resolution = 0.004;  // the cells fit, the bound pyramid does not
   test::expect_error([&] { CorrelationEstimator(map, ring, options); },
-                     {"map at 0.004 m", "MB exceeds the limit of 2560 MB", "--max-memory-mb"});
+                     {"map at 0.004 m", "MB, more than the limit of 2560 MB", "--max-memory-mb"});
   options.resolution = 0.1;
   options.limits.max_memory_mb = 1;
   test::expect_error([&] { CorrelationEstimator(map, ring, options); }, {"--max-memory-mb"});
@@ -116,8 +116,7 @@ TEST(MemoryEstimate, ASearchOverTheLimitIsRefusedBeforeItRuns) {
   test::expect_error([&] { estimator.score_volume(observation, window); },
                      {"90001 headings", "--max-memory-mb"});
   window.step_theta = 1e-9;  // the heading count itself is capped
-  test::expect_error([&] { estimator.estimate(observation, window); },
-                     {"step_theta", "headings"});
+  test::expect_error([&] { estimator.estimate(observation, window); }, {"step_theta", "headings"});
   window.step_theta = 1e300;  // and a step is at most a turn
   test::expect_error([&] { estimator.estimate(observation, window); },
                      {"step_theta = 1e+300 must lie in (0, 2 pi]"});

@@ -54,7 +54,7 @@ TEST(ResourceLimits, InputFilesMustBeRegularAndSmallEnough) {
   EXPECT_EQ(read_input_file(file, "scan file", limits).size(), 3u * 1024 * 1024);
   limits.max_file_mb = 2.0;
   test::expect_error([&] { check_input_file(file, "scan file", limits); },
-                     {file, "scan file is: 3 MB", "limit of 2 MB", "--max-file-mb"});
+                     {file, "scan file is 3 MB, more than the limit of 2 MB", "--max-file-mb"});
   test::expect_error([&] { check_input_file(dir.path().string(), "readings file", limits); },
                      {"is a directory, not a readings file"});
   test::expect_error([&] { check_input_file(dir.file("none"), "sonar ring", limits); },

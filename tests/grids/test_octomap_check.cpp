@@ -361,7 +361,7 @@ TEST_F(OctomapCheck, LimitsAreChecked) {
   const std::string huge = write("huge.bt", header(true, "4000000000") + chain_to_one_voxel());
   EXPECT_EQ(message_of([&] { load_octomap(huge, {}, limits); }),
             huge +
-                ": the OctoMap tree of 4000000000 nodes would need about: 183106 MB exceeds "
+                ": the OctoMap tree of 4000000000 nodes would need about 183106 MB, more than "
                 "the limit of 1 MB (raise it with --max-memory-mb)");
   EXPECT_EQ(message_of([&] { load_octomap(ot_, {}, limits); }), "no error");
   // The file's size.
@@ -370,7 +370,7 @@ TEST_F(OctomapCheck, LimitsAreChecked) {
   const std::string big = write("big.bt", std::string((1 << 20) + 1, '#'));
   EXPECT_EQ(message_of([&] { load_octomap(big, {}, limits); }),
             big +
-                ": the binary OctoMap (.bt) is: 2 MB exceeds the limit of 1 MB (raise it with "
+                ": the binary OctoMap (.bt) is 2 MB, more than the limit of 1 MB (raise it with "
                 "--max-file-mb)");
   // The 2-D map's cells.
   limits = {};

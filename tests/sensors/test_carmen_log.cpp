@@ -110,12 +110,12 @@ TEST(CarmenLog, FileErrors) {
   test::expect_error([&] { load_carmen_log(missing); }, {missing, "not found"});
   const std::string ok = dir.write("ok.log", "ODOM 0 0 0 0 0 0 1 h 1\n");
   EXPECT_EQ(load_carmen_log(ok).odometry.size(), 1u);
-  test::expect_error([&] { load_carmen_log(ok, CarmenOptions{-1.0}); }, {"max_range"});
-  test::expect_error(
-      [&] {
-        load_carmen_log(ok, CarmenOptions{80.0, 0});
-      },
-      {"max_decompressed_bytes"});
+  CarmenOptions options;
+  options.max_range = -1.0;
+  test::expect_error([&] { load_carmen_log(ok, options); }, {"max_range"});
+  options = {};
+  options.max_decompressed_bytes = 0;
+  test::expect_error([&] { load_carmen_log(ok, options); }, {"max_decompressed_bytes"});
 }
 
 const char* const kExcerpt =

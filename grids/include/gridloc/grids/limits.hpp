@@ -49,7 +49,8 @@ void check_limit(double amount, double limit, const std::string& what, const std
 double check_grid_cells(double width, double height, const ResourceLimits& limits,
                         const std::string& what);
 
-/// Checks an estimated allocation of `bytes` against limits.max_memory_mb.
+/// Checks an estimated allocation of `bytes` against limits.max_memory_mb: "<what> would need
+/// about <n> MB, more than the limit of <limit> MB (raise it with --max-memory-mb)".
 void check_memory(double bytes, const ResourceLimits& limits, const std::string& what);
 
 /// Checks that `path` names a readable regular file (not a directory or a device) of at most
