@@ -14,7 +14,7 @@ esac
 
 packages="cmake make g++ libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev \
   libgtest-dev libbenchmark-dev libopencv-core-dev libopencv-imgcodecs-dev libopencv-imgproc-dev \
-  liboctomap-dev zlib1g-dev"
+  liboctomap-dev zlib1g-dev libboost-dev"
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
