@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -377,6 +379,46 @@ PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limit
   } catch (const Error& e) {
     throw Error("polygon map " + path + ": " + e.what());
   }
+}
+
+namespace {
+
+/// A ring as the file format writes it: `[[x, y], ...]`, closed by repeating its first vertex.
+void write_ring(std::ostream& out, const Polygon& ring) {
+  out << "[";
+  for (std::size_t i = 0; i <= ring.size(); ++i) {
+    const Eigen::Vector2d& v = ring[i % ring.size()];
+    out << (i > 0 ? ", [" : "[") << v.x() << ", " << v.y() << "]";
+  }
+  out << "]";
+}
+
+}  // namespace
+
+void save_polygon_map(const PolygonMap& map, const std::string& path, const std::string& comment) {
+  if (map.boundary.empty()) throw Error("polygon map " + path + ": the boundary is empty");
+  for (std::size_t k = 0; k < map.obstacles.size(); ++k) {
+    if (map.obstacles[k].empty()) {
+      throw Error("polygon map " + path + ": obstacle " + std::to_string(k) + " is empty");
+    }
+  }
+  std::ofstream out(path);
+  if (!out) throw Error("polygon map " + path + ": cannot open the file for writing");
+  out << std::setprecision(17);  // round-trip exact doubles
+  out << "# gridloc polygon map (format: grids/include/gridloc/grids/polygon_map.hpp)\n";
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+  out << "resolution: " << map.resolution << "\nboundary: ";
+  write_ring(out, map.boundary);
+  out << "\n";
+  if (!map.obstacles.empty()) out << "obstacles:\n";
+  for (const Polygon& obstacle : map.obstacles) {
+    out << "  - ";
+    write_ring(out, obstacle);
+    out << "\n";
+  }
+  out.flush();
+  if (!out) throw Error("polygon map " + path + ": cannot write the file");
 }
 
 std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> polygon_edges(const PolygonMap& map) {

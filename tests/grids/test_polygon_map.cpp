@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -177,6 +178,41 @@ TEST(PolygonMapLimits, ScanlineRasterMatchesThePointTest) {
       }
     }
   }
+}
+
+TEST(PolygonMapWriter, RoundTripsRingsResolutionAndComment) {
+  test::TempDir dir;
+  // Coordinates that only 17 digits keep, an obstacle, a two-line comment.
+  const PolygonMap map =
+      make_polygon_map(rect(0.1, -0.2, 4.0 / 3.0, 3.0), {rect(0.5, 0.5, 1.0, 1.0 + 1e-9)}, 0.07);
+  const std::string path = dir.file("saved.yaml");
+  save_polygon_map(map, path, "first line\nsecond line");
+  EXPECT_TRUE(is_polygon_map_file(path));
+  const PolygonMap back = load_polygon_map(path);
+  EXPECT_EQ(back.boundary, map.boundary);
+  EXPECT_EQ(back.obstacles, map.obstacles);
+  EXPECT_EQ(back.resolution, map.resolution);
+  std::ifstream in(path);
+  std::string first, second, third;
+  std::getline(in, first);
+  std::getline(in, second);
+  std::getline(in, third);
+  EXPECT_EQ(first.rfind("# gridloc polygon map", 0), 0u);
+  EXPECT_EQ(second, "# first line");
+  EXPECT_EQ(third, "# second line");
+}
+
+TEST(PolygonMapWriter, WithoutObstaclesAndErrors) {
+  test::TempDir dir;
+  const PolygonMap map = make_polygon_map(rect(0, 0, 2, 1), {});
+  const std::string path = dir.file("plain.yaml");
+  save_polygon_map(map, path);
+  const PolygonMap back = load_polygon_map(path);
+  EXPECT_EQ(back.boundary, map.boundary);
+  EXPECT_TRUE(back.obstacles.empty());
+  const std::string missing = dir.file("no_such_folder/map.yaml");
+  test::expect_error([&] { save_polygon_map(map, missing); }, {missing, "cannot open"});
+  test::expect_error([&] { save_polygon_map(PolygonMap{}, path); }, {path, "boundary is empty"});
 }
 
 TEST(PolygonMapLimits, FileSizeIsBoundedByTheVertexLimit) {

@@ -55,6 +55,14 @@ PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles,
 /// closed (its last vertex must repeat the first), and every fault make_polygon_map() finds.
 PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limits = {});
 
+/// Writes `map` as a polygon map file that load_polygon_map() reads back to the same rings
+/// and resolution (17 significant digits, each ring closed by repeating its first vertex).
+/// `comment` (may be empty) goes first, each of its lines as a `#` comment. Writes the rings
+/// as they are (load_polygon_map checks them); throws gridloc::Error naming the file when it
+/// cannot be written.
+void save_polygon_map(const PolygonMap& map, const std::string& path,
+                      const std::string& comment = {});
+
 /// Whether a YAML file is a polygon map (has a `boundary` key) rather than a map_server map;
 /// false for a file that cannot be read within `limits` (the map loader then says why).
 bool is_polygon_map_file(const std::string& path, const ResourceLimits& limits = {});
