@@ -3,10 +3,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -383,12 +384,19 @@ PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limit
 
 namespace {
 
+/// The shortest text that reads back as exactly `value` (std::to_chars' round-trip form).
+std::string number_text(double value) {
+  std::array<char, 32> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc{} ? std::string(text.data(), end) : std::string("nan");
+}
+
 /// A ring as the file format writes it: `[[x, y], ...]`, closed by repeating its first vertex.
 void write_ring(std::ostream& out, const Polygon& ring) {
   out << "[";
   for (std::size_t i = 0; i <= ring.size(); ++i) {
     const Eigen::Vector2d& v = ring[i % ring.size()];
-    out << (i > 0 ? ", [" : "[") << v.x() << ", " << v.y() << "]";
+    out << (i > 0 ? ", [" : "[") << number_text(v.x()) << ", " << number_text(v.y()) << "]";
   }
   out << "]";
 }
@@ -404,11 +412,10 @@ void save_polygon_map(const PolygonMap& map, const std::string& path, const std:
   }
   std::ofstream out(path);
   if (!out) throw Error("polygon map " + path + ": cannot open the file for writing");
-  out << std::setprecision(17);  // round-trip exact doubles
   out << "# gridloc polygon map (format: grids/include/gridloc/grids/polygon_map.hpp)\n";
   std::istringstream lines(comment);
   for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
-  out << "resolution: " << map.resolution << "\nboundary: ";
+  out << "resolution: " << number_text(map.resolution) << "\nboundary: ";
   write_ring(out, map.boundary);
   out << "\n";
   if (!map.obstacles.empty()) out << "obstacles:\n";

@@ -56,7 +56,8 @@ PolygonMap make_polygon_map(Polygon boundary, std::vector<Polygon> obstacles,
 PolygonMap load_polygon_map(const std::string& path, const ResourceLimits& limits = {});
 
 /// Writes `map` as a polygon map file that load_polygon_map() reads back to the same rings
-/// and resolution (17 significant digits, each ring closed by repeating its first vertex).
+/// and resolution (each number as the shortest text that reads back exactly, each ring
+/// closed by repeating its first vertex).
 /// `comment` (may be empty) goes first, each of its lines as a `#` comment. Writes the rings
 /// as they are (load_polygon_map checks them); throws gridloc::Error naming the file when it
 /// cannot be written.
