@@ -157,6 +157,17 @@ TEST(OfficeEnvironments, RandomOptionsGiveLegalMapsNearTheTarget) {
   }
 }
 
+TEST(OfficeEnvironments, BundledMapIsSeedOne) {
+  // maps/polygons/office_rooms.yaml is save_polygon_map(random_office(1)): the same vertices
+  // here show the generator gives the same office on this platform (and has not changed).
+  const PolygonMap bundled = load_polygon_map(test::maps_dir() + "/polygons/office_rooms.yaml");
+  const PolygonMap office = random_office(1);
+  EXPECT_EQ(bundled.boundary, office.boundary)
+      << "regenerate the file with save_polygon_map(random_office(1), path, comment)";
+  EXPECT_EQ(bundled.resolution, office.resolution);
+  EXPECT_TRUE(bundled.obstacles.empty());
+}
+
 TEST(OfficeEnvironments, BadOptionsAreNamed) {
   const auto expect_bad = [](auto change, const std::string& name) {
     OfficeOptions o;
