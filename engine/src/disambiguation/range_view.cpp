@@ -40,12 +40,16 @@ struct ViewerFrame {
   }
 };
 
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                           const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a;
+/// The squared distance from p to the segment a-b (one division at most).
+double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                   const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a, w = p - a;
+  const double along = w.dot(d);
+  if (along <= 0.0) return w.squaredNorm();
   const double length2 = d.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
+  if (along >= length2) return (p - b).squaredNorm();
+  const double off = cross(d, w);
+  return off * off / length2;
 }
 
 /// A wall in the viewer frame, `start` its counter-clockwise-first end as seen from the
@@ -64,35 +68,40 @@ struct SweepInterval {
   int edge = -1;
 };
 
+/// A direction where walls open or close: the vertex where `close` ends and `open` starts
+/// (-1: none), so a vertex shared by two consecutive walls is one event.
 struct SweepEvent {
   double key;
-  int edge;
-  bool opens;
+  int open = -1;
+  int close = -1;
 };
 
 /// The walls that may matter: within `range` of the viewpoint, not seen edge-on, facing the
 /// viewer (back faces too when the viewpoint stands on a wall), in the viewer frame.
 std::vector<SweepEdge> sweep_edges(const Area& area, const ViewerFrame& frame, double range) {
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> near;
+  const double range2 = range * range;  // +inf for kUnlimitedRange
+  const double boundary2 = kOnBoundaryDistance * kOnBoundaryDistance;
+  const bool finite = std::isfinite(range);
+  std::vector<SweepEdge> edges, back_faces;
+  edges.reserve(area.outer.size() + 4 * area.holes.size());
   bool on_boundary = false;
   auto collect = [&](const Polygon& ring) {
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Eigen::Vector2d& a = ring[i];
-      const Eigen::Vector2d& b = ring[(i + 1) % ring.size()];
-      const double distance = distance_to_segment(frame.origin, a, b);
-      on_boundary = on_boundary || distance <= kOnBoundaryDistance;
-      if (distance <= range) near.emplace_back(frame(a), frame(b));
+      const Eigen::Vector2d& b = ring[i + 1 < ring.size() ? i + 1 : 0];
+      const double turn = cross(a - frame.origin, b - frame.origin);  // > 0: area faces viewer
+      // Twice the triangle's area bounds the distance to the wall's line: test only near ones.
+      if (turn * turn <= boundary2 * (b - a).squaredNorm()) {
+        on_boundary = on_boundary || squared_distance_to_segment(frame.origin, a, b) <= boundary2;
+      }
+      if (finite && squared_distance_to_segment(frame.origin, a, b) > range2) continue;
+      if (turn > 0.0) edges.push_back({frame(a), frame(b), true});
+      if (turn < 0.0) back_faces.push_back({frame(b), frame(a), false});
     }
   };
   collect(area.outer);
   for (const Polygon& hole : area.holes) collect(hole);
-  std::vector<SweepEdge> edges;
-  edges.reserve(near.size());
-  for (const auto& [a, b] : near) {
-    const double turn = cross(a, b);  // > 0: the area (left of a->b) faces the origin
-    if (turn > 0.0) edges.push_back({a, b, true});
-    if (turn < 0.0 && on_boundary) edges.push_back({b, a, false});
-  }
+  if (on_boundary) edges.insert(edges.end(), back_faces.begin(), back_faces.end());
   return edges;
 }
 
@@ -105,12 +114,12 @@ Eigen::Vector2d bisector(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
   return mid;
 }
 
-/// The wall hit first by the ray from the origin along `direction` among `active`, or -1.
-int nearest_edge(const std::vector<SweepEdge>& edges, const std::vector<int>& active,
+/// The wall hit first by the ray from the origin along `direction` among `candidates`, or -1.
+int nearest_edge(const std::vector<SweepEdge>& edges, const std::vector<int>& candidates,
                  const Eigen::Vector2d& direction) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (const int e : active) {
+  for (const int e : candidates) {
     const Eigen::Vector2d d = edges[e].end - edges[e].start;
     const double distance = cross(edges[e].start, d) / cross(direction, d);
     if (distance > 0.0 && distance < best_distance) best_distance = distance, best = e;
@@ -118,6 +127,9 @@ int nearest_edge(const std::vector<SweepEdge>& edges, const std::vector<int>& ac
   return best;
 }
 
+/// The events in counter-clockwise order from the -x axis; walls crossing it are returned in
+/// `initially_active`. `edges` come in ring order, so a wall starting where the previous one
+/// ends shares its event.
 std::vector<SweepEvent> sweep_events(const std::vector<SweepEdge>& edges,
                                      std::vector<int>& initially_active) {
   std::vector<SweepEvent> events;
@@ -126,11 +138,17 @@ std::vector<SweepEvent> sweep_events(const std::vector<SweepEdge>& edges,
     const double open = pseudo_angle(edges[e].start), close = pseudo_angle(edges[e].end);
     if (open == close) continue;                      // degenerate: no angular extent
     if (close < open) initially_active.push_back(e);  // crosses the -x axis
-    events.push_back({open, e, true});
-    events.push_back({close, e, false});
+    const bool shared = !events.empty() && events.back().close == e - 1 && events.back().open < 0 &&
+                        edges[e - 1].end == edges[e].start;
+    if (shared)
+      events.back().open = e;
+    else
+      events.push_back({open, e, -1});
+    events.push_back({close, -1, e});
   }
-  std::sort(events.begin(), events.end(),
-            [](const SweepEvent& l, const SweepEvent& r) { return l.key < r.key; });
+  // Stable: the input is nearly sorted (facing walls along a ring turn counter-clockwise).
+  std::stable_sort(events.begin(), events.end(),
+                   [](const SweepEvent& l, const SweepEvent& r) { return l.key < r.key; });
   return events;
 }
 
@@ -158,34 +176,65 @@ class ActiveSet {
   std::vector<int> members_;
 };
 
+/// The nearest wall as the sweep turns. Walls do not cross, so between events it stays the
+/// same, and at an event it changes only to a wall that opens there, or when it closes.
+class NearestWall {
+ public:
+  explicit NearestWall(const std::vector<SweepEdge>& edges)
+      : edges_(edges), active_(edges.size()) {}
+  void open(int e) { active_.insert(e), opened_.push_back(e); }
+  void close(int e) {
+    active_.erase(e);
+    if (e == nearest_) rescan_ = true;
+  }
+  /// The nearest wall over an interval with no event inside; `direction` lies inside it.
+  int over(const Eigen::Vector2d& direction) {
+    if (rescan_) {
+      nearest_ = nearest_edge(edges_, active_.members(), direction);
+    } else if (!opened_.empty()) {
+      if (nearest_ >= 0) opened_.push_back(nearest_);
+      nearest_ = nearest_edge(edges_, opened_, direction);
+    }
+    rescan_ = false;
+    opened_.clear();
+    return nearest_;
+  }
+
+ private:
+  const std::vector<SweepEdge>& edges_;
+  ActiveSet active_;
+  std::vector<int> opened_;  // since the last interval
+  int nearest_ = -1;
+  bool rescan_ = true;
+};
+
 /// The angular sweep (seed 002 §III-B's W): between consecutive vertex directions the nearest
 /// wall is fixed, so one ray per interval finds it. Intervals cover [-pi, pi) in order.
 std::vector<SweepInterval> sweep(const std::vector<SweepEdge>& edges) {
   std::vector<int> initially_active;
   const std::vector<SweepEvent> events = sweep_events(edges, initially_active);
-  ActiveSet active(edges.size());
-  for (const int e : initially_active) active.insert(e);
+  NearestWall nearest(edges);
+  for (const int e : initially_active) nearest.open(e);
   std::vector<SweepInterval> intervals;
   intervals.reserve(events.size() / 2 + 2);
   SweepInterval current{{-1.0, 0.0}, {-1.0, 0.0}, -2.0, 2.0, -1};
   for (std::size_t i = 0; i < events.size();) {
     const double key = events[i].key;
     if (key > current.from_key) {
-      const SweepEdge& edge = edges[events[i].edge];
-      current.to = (events[i].opens ? edge.start : edge.end).normalized();
+      const SweepEvent& event = events[i];
+      current.to =
+          (event.open >= 0 ? edges[event.open].start : edges[event.close].end).normalized();
       current.to_key = key;
-      current.edge = nearest_edge(edges, active.members(), bisector(current.from, current.to));
+      current.edge = nearest.over(bisector(current.from, current.to));
       intervals.push_back(current);
       current = {current.to, {-1.0, 0.0}, key, 2.0, -1};
     }
     for (; i < events.size() && events[i].key == key; ++i) {
-      if (events[i].opens)
-        active.insert(events[i].edge);
-      else
-        active.erase(events[i].edge);
+      if (events[i].close >= 0) nearest.close(events[i].close);
+      if (events[i].open >= 0) nearest.open(events[i].open);
     }
   }
-  current.edge = nearest_edge(edges, active.members(), bisector(current.from, current.to));
+  current.edge = nearest.over(bisector(current.from, current.to));
   intervals.push_back(current);
   return intervals;
 }
