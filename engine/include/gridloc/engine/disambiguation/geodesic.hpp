@@ -3,6 +3,8 @@
 /// along its walls; a shortest path bends only at the area's reflex vertices, so distances
 /// come from Dijkstra on the visibility graph of those vertices.
 #include <Eigen/Core>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "gridloc/engine/disambiguation/region.hpp"
@@ -30,11 +32,19 @@ class GeodesicDistance {
   std::vector<Eigen::Vector2d> path_to(const Eigen::Vector2d& target) const;
 
  private:
+  struct Index;  ///< the area's edges, vertices and point-in-area structure (in the .cpp)
+
+  /// The shortest length to `target` (inside the area) and the last node before it (-1: the
+  /// source sees it directly; -2: unreachable).
+  std::pair<double, int> last_leg(const Eigen::Vector2d& target) const;
+
   Area area_;
+  std::shared_ptr<const Index> index_;
   Eigen::Vector2d source_;
   std::vector<Eigen::Vector2d> nodes_;  ///< reflex vertices
   std::vector<double> distance_;        ///< per node, from the source (+inf unreached)
   std::vector<int> previous_;           ///< per node, the node before it (-1: the source)
+  std::vector<int> order_;              ///< the reached nodes by increasing distance
 };
 
 }  // namespace gridloc

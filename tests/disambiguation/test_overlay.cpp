@@ -1,0 +1,203 @@
+// The overlay arrangement of seed 002 §IV: maps in the start frame, their intersection, OI,
+// and OI's boundary split into internal and silhouette edges (Fig. 5).
+#include "gridloc/engine/disambiguation/overlay.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+Polygon rectangle(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};  // counter-clockwise
+}
+
+Polygon clockwise(Polygon ring) {
+  std::reverse(ring.begin(), ring.end());
+  return ring;
+}
+
+double total_length(const std::vector<Segment>& pieces) {
+  double length = 0.0;
+  for (const Segment& piece : pieces) length += (piece.b - piece.a).norm();
+  return length;
+}
+
+double distance_to_segment(const Segment& s, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d d = s.b - s.a;
+  const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (s.a + t * d - p).norm();
+}
+
+/// Whether some piece passes through p.
+bool on_some_piece(const std::vector<Segment>& pieces, const Eigen::Vector2d& p) {
+  for (const Segment& piece : pieces) {
+    if (distance_to_segment(piece, p) < 1e-9) return true;
+  }
+  return false;
+}
+
+double oi_perimeter(const Area& oi) {
+  return total_length(area_edges(oi));
+}
+
+/// Every piece agrees with a brute-force look just beyond its midpoint.
+void expect_pieces_classified(const Overlay& overlay) {
+  for (int internal = 0; internal < 2; ++internal) {
+    for (const Segment& piece : internal ? overlay.internal_edges : overlay.silhouette_edges) {
+      const Eigen::Vector2d d = (piece.b - piece.a).normalized();
+      const Eigen::Vector2d probe =
+          0.5 * (piece.a + piece.b) + 1e-4 * Eigen::Vector2d(d.y(), -d.x());
+      bool free_beyond = false;
+      for (const Area& map : overlay.maps) free_beyond = free_beyond || covers(map, probe);
+      EXPECT_EQ(free_beyond, internal == 1) << probe.transpose();
+      EXPECT_FALSE(covers(overlay.oi, probe)) << "the probe should lie outside OI";
+    }
+  }
+  EXPECT_NEAR(total_length(overlay.internal_edges) + total_length(overlay.silhouette_edges),
+              oi_perimeter(overlay.oi), 1e-9);
+}
+
+TEST(Overlay, TwoShiftedRectangularRoomsOverlapInASquare) {
+  const Area room{rectangle(0, 0, 4, 3), {}};
+  const Overlay overlay = make_overlay(room, {{1, 1, 0}, {2, 1, 0}});
+  ASSERT_EQ(overlay.maps.size(), 2u);
+  EXPECT_TRUE(covers(overlay.maps[0], {-1, -1}));  // the room seen from (1, 1)
+  EXPECT_TRUE(covers(overlay.maps[1], {-2, -1}));
+  ASSERT_EQ(overlay.intersection.size(), 1u);
+  EXPECT_NEAR(region_size(overlay.intersection), 9.0, 1e-12);  // [-1, 2] x [-1, 2]
+  EXPECT_NEAR(area_size(overlay.oi), 9.0, 1e-12);
+  EXPECT_TRUE(covers(overlay.oi, {-1, -1}));
+  EXPECT_TRUE(covers(overlay.oi, {2, 2}));
+  EXPECT_FALSE(covers(overlay.oi, {2.01, 0}));
+  EXPECT_FALSE(covers(overlay.oi, {-1.01, 0}));
+  // The side walls each belong to one copy, the other copy's room goes on: internal.
+  EXPECT_NEAR(total_length(overlay.internal_edges), 6.0, 1e-12);
+  EXPECT_NEAR(total_length(overlay.silhouette_edges), 6.0, 1e-12);
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {-1, 0.5}));
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {2, 0.5}));
+  EXPECT_TRUE(on_some_piece(overlay.silhouette_edges, {0.5, 2}));
+  expect_pieces_classified(overlay);
+}
+
+TEST(Overlay, LShapedMapSplitsAWallWhereTheOtherCopyGoesOn) {
+  // L: [0,4]x[0,2] and [0,2]x[2,4]; from (1,1) and (2,1) OI is the L with corners (-1,-1),
+  // (2,-1), (2,1), (0,1), (0,3), (-1,3).
+  const Area l_room{{{0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}}, {}};
+  const Overlay overlay = make_overlay(l_room, {{1, 1, 0}, {2, 1, 0}});
+  EXPECT_NEAR(area_size(overlay.oi), 8.0, 1e-12);
+  EXPECT_NEAR(total_length(overlay.internal_edges), 9.0, 1e-12);
+  EXPECT_NEAR(total_length(overlay.silhouette_edges), 5.0, 1e-12);
+  // The wall y = 1 from x = 0 to 2 is split at x = 1, where the first copy's arm ends.
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {0.5, 1}));
+  EXPECT_FALSE(on_some_piece(overlay.internal_edges, {1.5, 1}));
+  EXPECT_TRUE(on_some_piece(overlay.silhouette_edges, {1.5, 1}));
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {0, 2}));     // the arm's inner wall
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {2, 0}));     // the second copy's end
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {-1, 2}));    // the first copy's end
+  EXPECT_TRUE(on_some_piece(overlay.silhouette_edges, {0, -1}));  // both floors
+  EXPECT_TRUE(on_some_piece(overlay.silhouette_edges, {-0.5, 3}));
+  expect_pieces_classified(overlay);
+}
+
+TEST(Overlay, AnObstacleGivesOIBothCopiesHoles) {
+  const Area room{rectangle(0, 0, 8, 4), {clockwise(rectangle(3, 1, 4, 2))}};
+  const Overlay overlay = make_overlay(room, {{1, 1, 0}, {3, 1, 0}});
+  ASSERT_EQ(overlay.oi.holes.size(), 2u);  // [2,3]x[0,1] and [0,1]x[0,1]
+  EXPECT_NEAR(area_size(overlay.oi), 6.0 * 4.0 - 2.0, 1e-12);
+  EXPECT_FALSE(covers(overlay.oi, {0.5, 0.5}));
+  EXPECT_FALSE(covers(overlay.oi, {2.5, 0.5}));
+  EXPECT_TRUE(covers(overlay.oi, {1.5, 0.5}));
+  EXPECT_TRUE(covers(overlay.oi, {1, 0.5}));  // on a hole's wall (closed)
+  // Each hole is one copy's obstacle, free in the other copy: its walls are internal.
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {0.5, 0}));
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {3, 0.5}));
+  expect_pieces_classified(overlay);
+}
+
+TEST(Overlay, RotatedHypothesesSeeTheRoomTurned) {
+  const Area room{rectangle(0, 0, 4, 2), {}};
+  const double quarter = std::acos(0.0);
+  const Overlay overlay = make_overlay(room, {{1, 1, quarter}, {1, 1, quarter}});
+  // Facing +y from (1, 1): the room spans x' in [-1, 1] (from world y) and y' in [-3, 1].
+  EXPECT_NEAR(area_size(overlay.oi), 8.0, 1e-9);
+  EXPECT_TRUE(covers(overlay.oi, {0.5, -2.5}));
+  EXPECT_FALSE(covers(overlay.oi, {2.5, 0.5}));
+  EXPECT_TRUE(overlay.internal_edges.empty());
+  expect_pieces_classified(overlay);
+}
+
+TEST(Overlay, TheAnchorPicksItsComponent) {
+  // A U (notch [1,2]x[1,3]) and its copy raised by 2: they overlap in two 1x1 squares.
+  const Area u_room{{{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}}, {}};
+  const std::vector<Pose2> hypotheses{{0, 0, 0}, {0, -2, 0}};
+  const Overlay left = make_overlay(u_room, hypotheses, {0.5, 2.5});
+  const Overlay right = make_overlay(u_room, hypotheses, {2.5, 2.5});
+  ASSERT_EQ(left.intersection.size(), 2u);
+  EXPECT_NEAR(region_size(left.intersection), 2.0, 1e-12);
+  EXPECT_TRUE(covers(left.oi, {0.5, 2.5}));
+  EXPECT_FALSE(covers(left.oi, {2.5, 2.5}));
+  EXPECT_TRUE(covers(right.oi, {2.5, 2.5}));
+  EXPECT_TRUE(covers(left.intersection, {2.5, 2.5}));
+  EXPECT_FALSE(covers(left.intersection, {1.5, 2.5}));
+}
+
+TEST(Overlay, BadInputThrows) {
+  const Area room{rectangle(0, 0, 4, 3), {}};
+  test::expect_error(
+      [&] {
+        make_overlay(room, {{1, 1, 0}, {2, 1, 0}}, {10, 10});
+      },
+      {"anchor", "10.0", "make_overlay"});
+  test::expect_error([&] { make_overlay(room, {}); }, {"no hypotheses"});
+  test::expect_error(
+      [&] {
+        make_overlay(Area{{{0, 0}, {1, 0}}, {}}, {{0, 0, 0}});
+      },
+      {"fewer than 3"});
+}
+
+/// A comb: a corridor [0, 2 teeth] x [0, 1] with `teeth` rooms [2i, 2i + 1] x [1, 3] above
+/// it: 4 teeth + 2 vertices, self-similar under shifts by 2.
+Area comb(int teeth) {
+  Polygon ring{{0, 0}, {2.0 * teeth, 0}, {2.0 * teeth, 1}};
+  for (int i = teeth - 1; i >= 0; --i) {
+    const double x = 2.0 * i;
+    ring.insert(ring.end(), {{x + 1, 1}, {x + 1, 3}, {x, 3}});
+    if (i > 0) ring.push_back({x, 1});  // (0, 1) would sit on the straight wall x = 0
+  }
+  return Area{ring, {}};
+}
+
+/// k hypotheses 2 apart along a comb of about 400 vertices.
+void expect_comb_overlay(int k) {
+  const Area map = comb(100);
+  std::vector<Pose2> hypotheses;
+  for (int i = 0; i < k; ++i) hypotheses.push_back({2.0 * i + 0.5, 2.0, 0.0});
+  const Overlay overlay = make_overlay(map, hypotheses);
+  // Under every hypothesis the robot stands in a tooth; the copies agree on all but k - 1
+  // teeth (2 each) and k - 1 corridor stretches (2 each).
+  ASSERT_EQ(map.outer.size(), 402u);
+  EXPECT_TRUE(covers(overlay.oi, {-0.5, -1.5}));
+  EXPECT_FALSE(covers(overlay.oi, {-0.6, -1.5}));
+  EXPECT_NEAR(region_size(overlay.intersection), area_size(map) - 4.0 * (k - 1), 1e-9);
+  EXPECT_NEAR(area_size(overlay.oi), area_size(map) - 4.0 * (k - 1), 1e-9);
+  expect_pieces_classified(overlay);
+}
+
+TEST(Overlay, CombOfFourHundredVerticesTwoHypotheses) {
+  expect_comb_overlay(2);
+}
+TEST(Overlay, CombOfFourHundredVerticesTenHypotheses) {
+  expect_comb_overlay(10);
+}
+TEST(Overlay, CombOfFourHundredVerticesFiftyHypotheses) {
+  expect_comb_overlay(50);
+}
+
+}  // namespace
+}  // namespace gridloc
