@@ -81,6 +81,25 @@ TEST(Geodesic, AroundAnObstacleBendsAtItsConvexCorners) {
   EXPECT_EQ(path[2].x(), 3.0);
 }
 
+TEST(Geodesic, ARotatedRoomKeepsItsDistances) {
+  const Pose2 turn{0.3, -0.7, 0.5};  // rotated coordinates are no longer exact
+  auto rotate = [&](const Area& area) { return to_start_frame(turn, area); };
+  const std::vector<std::pair<Area, std::vector<Vec>>> cases{
+      {u_room(), {Vec(2.5, 2.5), Vec(2, 0.5), Vec(2.9, 2.9), Vec(2, 3)}},
+      {ring_room(), {Vec(3.5, 2), Vec(2, 0.5), Vec(3.5, 3.5), Vec(3, 3)}}};
+  for (const auto& [room, targets] : cases) {
+    const Vec source(0.5, 2.5);
+    const GeodesicDistance plain(room, source);
+    const GeodesicDistance turned(rotate(room), to_start_frame(turn, source));
+    for (const Vec& target : targets) {
+      const double expected = plain.distance_to(target);
+      ASSERT_LT(expected, 10.0) << target.transpose();
+      EXPECT_NEAR(turned.distance_to(to_start_frame(turn, target)), expected, 1e-9)
+          << target.transpose();
+    }
+  }
+}
+
 TEST(Geodesic, OutsideTargetsAndSources) {
   const GeodesicDistance geodesic(u_room(), {0.5, 2.5});
   EXPECT_EQ(geodesic.distance_to({1.5, 2}), std::numeric_limits<double>::infinity());  // notch
@@ -218,6 +237,34 @@ std::vector<Vec> reflex_vertices(const Area& area) {
   return reflex;
 }
 
+/// The exact shortest length by brute force: Dijkstra over every vertex of the area (no
+/// pruning), the source and the target, linked where segment_inside holds.
+double all_vertices_distance(const Area& area, const Vec& source, const Vec& target) {
+  std::vector<Vec> points{source};
+  points.insert(points.end(), area.outer.begin(), area.outer.end());
+  for (const Polygon& hole : area.holes) points.insert(points.end(), hole.begin(), hole.end());
+  points.push_back(target);
+  std::vector<double> dist(points.size(), std::numeric_limits<double>::infinity());
+  std::vector<bool> done(points.size(), false);
+  dist[0] = 0;
+  for (std::size_t round = 0; round < points.size(); ++round) {
+    std::size_t u = points.size();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!done[i] && dist[i] < std::numeric_limits<double>::infinity() &&
+          (u == points.size() || dist[i] < dist[u])) {
+        u = i;
+      }
+    }
+    if (u == points.size()) break;
+    done[u] = true;
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      const double next = dist[u] + (points[v] - points[u]).norm();
+      if (!done[v] && next < dist[v] && segment_inside(area, points[u], points[v])) dist[v] = next;
+    }
+  }
+  return dist.back();
+}
+
 void expect_matches_grid(const GridRoom& room, const Vec& source, std::mt19937& rng) {
   int nx = 0, ny = 0;
   const std::vector<double> grid = grid_distances(room, source, nx, ny);
@@ -234,6 +281,10 @@ void expect_matches_grid(const GridRoom& room, const Vec& source, std::mt19937& 
     }
     EXPECT_LE(exact, grid[k] + 1e-9) << target.transpose();
     EXPECT_GE(exact, grid[k] / 1.09 - 1e-9) << target.transpose();
+    if (n % 10 == 0) {
+      EXPECT_NEAR(exact, all_vertices_distance(room.area, source, target), 1e-9)
+          << target.transpose();
+    }
     const std::vector<Vec> path = geodesic.path_to(target);
     ASSERT_GE(path.size(), 2u);
     double length = 0;
