@@ -1,0 +1,174 @@
+// Seed 002 §IV-C (COL) and §IV-D (UAL): the hypothesis elimination loop.
+#include "gridloc/engine/disambiguation/minimum_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "gridloc/engine/disambiguation/polygon_space.hpp"
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+struct ScoredPoint {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  double info = 0.0;
+  double value = 0.0;
+};
+
+/// The best point of one stop's sampling rounds, and how many were drawn.
+struct StopChoice {
+  std::optional<ScoredPoint> best;
+  int sampled = 0;
+  int useful = 0;
+  bool sampled_useful = false;
+};
+
+/// Everything one stop's choice reads.
+struct StopContext {
+  const PlanningSpace& space;
+  const std::vector<Pose2>& active;  ///< the poses of the hypotheses still standing
+  const MinimumDistanceOptions& options;
+};
+
+std::vector<Pose2> poses_of(const std::vector<Pose2>& hypotheses, const std::vector<int>& active) {
+  std::vector<Pose2> poses;
+  for (const int index : active) poses.push_back(hypotheses[static_cast<std::size_t>(index)]);
+  return poses;
+}
+
+/// Scores one round of points; keeps the first of the highest Value (ties: lowest index).
+void score_round(const StopContext& context, const std::vector<Eigen::Vector2d>& points,
+                 const OverlayPaths& distance_from, StopChoice& choice) {
+  for (const Eigen::Vector2d& point : points) {
+    ++choice.sampled;
+    const double info = context.space.info(context.active, point);
+    if (!(info > 0.0)) continue;
+    const double distance = distance_from.distance_to(point);
+    if (!std::isfinite(distance)) continue;
+    ++choice.useful;
+    const double value = info / std::max(distance, 1e-9);  // seed 002 §IV-A: info / distance_OI
+    if (!choice.best || value > choice.best->value) choice.best = ScoredPoint{point, info, value};
+  }
+}
+
+/// Seed 002 steps 6-8: draw points, score them, and while none is useful draw twice as many.
+StopChoice choose_stop(const StopContext& context, const StopOverlay& overlay,
+                       const OverlayPaths& distance_from, Rng& rng) {
+  StopChoice choice;
+  long long count = context.options.points;
+  for (int round = 0; round < context.options.rounds && !choice.best; ++round) {
+    const std::vector<Eigen::Vector2d> points = overlay.sample(
+        context.options.algorithm, static_cast<int>(count), rng, choice.sampled_useful);
+    score_round(context, points, distance_from, choice);
+    count = std::min<long long>(2 * count, 1 << 20);
+  }
+  return choice;
+}
+
+std::vector<int> ruled_out(const std::vector<int>& active, const std::vector<int>& remaining) {
+  std::vector<int> eliminated;
+  for (const int index : active) {
+    if (std::find(remaining.begin(), remaining.end(), index) == remaining.end()) {
+      eliminated.push_back(index);
+    }
+  }
+  return eliminated;
+}
+
+/// One stop: overlay, choice, the route there. Empty when no useful point was found.
+std::optional<LocalizationStop> plan_stop(const StopContext& context,
+                                          const Eigen::Vector2d& current, Rng& rng) {
+  const std::unique_ptr<StopOverlay> overlay = context.space.overlay(context.active);
+  const std::unique_ptr<OverlayPaths> from_current = overlay->paths_from(current);
+  const bool weighted = context.options.strategy == DistanceStrategy::Weighted;
+  const std::unique_ptr<OverlayPaths> from_start =
+      weighted ? overlay->paths_from(Eigen::Vector2d::Zero()) : nullptr;
+  const StopChoice choice =
+      choose_stop(context, *overlay, weighted ? *from_start : *from_current, rng);
+  if (!choice.best) return std::nullopt;
+  LocalizationStop stop;
+  stop.point = choice.best->point;
+  stop.info = choice.best->info;
+  stop.value = choice.best->value;
+  stop.sampled = choice.sampled;
+  stop.useful = choice.useful;
+  stop.sampled_useful = choice.sampled_useful;
+  stop.route = from_current->path_to(stop.point);
+  stop.route_length = from_current->distance_to(stop.point);
+  return stop;
+}
+
+}  // namespace
+
+void validate(const MinimumDistanceOptions& options) {
+  if (options.points < 1) throw Error("disambiguation: points must be >= 1");
+  if (options.rounds < 1) throw Error("disambiguation: rounds must be >= 1");
+  if (options.max_stops < 1) throw Error("disambiguation: max_stops must be >= 1");
+}
+
+StopSensing perfect_sensing(const Area& free_world, const Pose2& true_start,
+                            const std::vector<Pose2>& hypotheses, double range, double tolerance) {
+  return [free_world, true_start, hypotheses, range, tolerance](const Eigen::Vector2d& stop,
+                                                                const std::vector<Eigen::Vector2d>&,
+                                                                const std::vector<int>& active) {
+    const RangeView sensed =
+        range_view(free_world, to_world(true_start, stop), true_start.theta, range);
+    std::vector<int> consistent;
+    for (const int index : active) {
+      const Pose2& start = hypotheses[static_cast<std::size_t>(index)];
+      const RangeView predicted = range_view(free_world, to_world(start, stop), start.theta, range);
+      if (same_view(predicted, sensed, tolerance)) consistent.push_back(index);
+    }
+    return consistent;
+  };
+}
+
+std::vector<Eigen::Vector2d> whole_path(const MinimumDistancePlan& plan) {
+  std::vector<Eigen::Vector2d> path{Eigen::Vector2d::Zero()};
+  for (const LocalizationStop& stop : plan.stops) {
+    for (std::size_t k = 1; k < stop.route.size(); ++k) path.push_back(stop.route[k]);
+  }
+  return path;
+}
+
+MinimumDistancePlan localize_with_minimum_travel(const PlanningSpace& space,
+                                                 const std::vector<Pose2>& hypotheses,
+                                                 const StopSensing& sense,
+                                                 const MinimumDistanceOptions& options) {
+  validate(options);
+  if (hypotheses.empty()) throw Error("disambiguation: no hypothesis to tell apart");
+  MinimumDistancePlan plan;
+  plan.hypotheses = hypotheses;
+  std::vector<int> active(hypotheses.size());
+  for (std::size_t i = 0; i < active.size(); ++i) active[i] = static_cast<int>(i);
+  Eigen::Vector2d current = Eigen::Vector2d::Zero();
+  Rng rng(options.seed);
+  while (active.size() > 1 && plan.ended.empty()) {
+    if (static_cast<int>(plan.stops.size()) >= options.max_stops) {
+      plan.ended = "stop limit";
+      break;
+    }
+    const std::vector<Pose2> standing = poses_of(hypotheses, active);
+    std::optional<LocalizationStop> stop =
+        plan_stop(StopContext{space, standing, options}, current, rng);
+    if (!stop) {
+      plan.ended = "no useful point";
+      break;
+    }
+    const std::vector<int> remaining = sense(stop->point, stop->route, active);  // step 10
+    stop->eliminated = ruled_out(active, remaining);
+    plan.path_length += stop->route_length;
+    current = stop->point;
+    active = remaining;
+    plan.stops.push_back(std::move(*stop));
+    if (active.empty()) plan.ended = "nothing consistent";
+  }
+  plan.remaining = active;
+  plan.resolved = active.size() == 1;
+  if (plan.resolved) plan.ended = "resolved";
+  return plan;
+}
+
+}  // namespace gridloc

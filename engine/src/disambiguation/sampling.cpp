@@ -1,0 +1,75 @@
+#include "gridloc/engine/disambiguation/sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gridloc/engine/disambiguation/overlay.hpp"
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+struct Box {
+  Eigen::Vector2d low, high;
+};
+
+Box bounding_box(const Area& area) {
+  Box box{area.outer.front(), area.outer.front()};
+  for (const Eigen::Vector2d& vertex : area.outer) {
+    box.low = box.low.cwiseMin(vertex);
+    box.high = box.high.cwiseMax(vertex);
+  }
+  return box;
+}
+
+/// The area of `region` that holds the share `u` (in [0, 1)) of the total size.
+std::size_t area_at_share(const std::vector<double>& cumulative, double u) {
+  const double target = u * cumulative.back();
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), target);
+  return std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()),
+                               cumulative.size() - 1);
+}
+
+Eigen::Vector2d point_in(const Area& area, const Box& box, Rng& rng) {
+  for (int attempt = 0; attempt < 100000; ++attempt) {
+    const Eigen::Vector2d p(rng.uniform(box.low.x(), box.high.x()),
+                            rng.uniform(box.low.y(), box.high.y()));
+    if (covers(area, p)) return p;
+  }
+  throw Error("sampling: an area covers almost none of its bounding box");
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> sample_uniform(const Region& region, int count, Rng& rng) {
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (const Area& area : region) cumulative.push_back(total += std::max(0.0, area_size(area)));
+  std::vector<Eigen::Vector2d> points;
+  if (region.empty() || !(total > 0.0)) return points;
+  std::vector<Box> boxes;
+  for (const Area& area : region) boxes.push_back(bounding_box(area));
+  points.reserve(static_cast<std::size_t>(std::max(count, 0)));
+  for (int i = 0; i < count; ++i) {
+    const std::size_t chosen = area_at_share(cumulative, rng.uniform());
+    points.push_back(point_in(region[chosen], boxes[chosen], rng));
+  }
+  return points;
+}
+
+std::vector<Eigen::Vector2d> sample_lattice(const Region& region, double step) {
+  if (!(step > 0.0) || !std::isfinite(step)) throw Error("sampling: lattice step must be > 0");
+  std::vector<Eigen::Vector2d> points;
+  for (const Area& area : region) {
+    if (area.outer.empty()) continue;
+    const Box box = bounding_box(area);
+    for (double y = box.low.y() + 0.5 * step; y < box.high.y(); y += step) {
+      for (double x = box.low.x() + 0.5 * step; x < box.high.x(); x += step) {
+        if (covers(area, {x, y})) points.emplace_back(x, y);
+      }
+    }
+  }
+  return points;
+}
+
+}  // namespace gridloc
