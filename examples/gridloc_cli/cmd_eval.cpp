@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "eval_disambiguation.hpp"
 #include "eval_drive.hpp"
 #include "eval_output.hpp"
 #include "eval_sectors.hpp"
@@ -122,6 +123,12 @@ bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators)
   return polygons > 0;
 }
 
+/// --protocol and the options of the protocols it names.
+struct ProtocolArgs {
+  std::string name;  ///< empty: seed 001's (or the sector protocol on polygon maps)
+  DisambiguationEvalArgs disambiguation;
+};
+
 /// Seed 001's protocol options from the command line.
 EvalOptions eval_options(const EvalArgs& args) {
   EvalOptions options;
@@ -151,7 +158,11 @@ EvalOptions eval_options(const EvalArgs& args) {
   return options;
 }
 
-void run(const EvalArgs& args, const DriveArgs& drive) {
+void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
+  if (protocol.name == "disambiguation") {
+    if (drive.given) throw Error("--drive and --protocol disambiguation are different protocols");
+    return run_disambiguation_eval(protocol.disambiguation, args.seed, args.json, args.quiet);
+  }
   check_step(args.step_xy);
   // Polygon maps or a sector estimator: the sector protocol.
   const bool sector_estimators = names_a_sector_estimator(args.estimators);
@@ -236,7 +247,13 @@ void add_eval(CLI::App& app) {
                   "write every trial (errors, scores, confidence, std) to this CSV");
   auto drive = std::make_shared<DriveArgs>();
   add_drive_options(cmd, *drive);
-  cmd->callback([args, drive] { run(*args, *drive); });
+  auto protocol = std::make_shared<ProtocolArgs>();
+  cmd->add_option("--protocol", protocol->name,
+                  "disambiguation: seed 002's minimum-distance protocol on random offices "
+                  "(default: seed 001's, or the sector protocol on polygon maps)")
+      ->check(CLI::IsMember({"disambiguation"}));
+  add_disambiguation_options(cmd, protocol->disambiguation);
+  cmd->callback([args, drive, protocol] { run(*args, *drive, *protocol); });
 }
 
 }  // namespace gridloc::cli
