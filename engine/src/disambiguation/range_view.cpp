@@ -52,6 +52,16 @@ double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector
   return off * off / length2;
 }
 
+/// Whether the segment a-b lies wholly on one side outside the square of half-side `range`
+/// about p (then it is farther than `range` from p): a cheap first filter.
+bool beyond_box(const Eigen::Vector2d& p, double range, const Eigen::Vector2d& a,
+                const Eigen::Vector2d& b) {
+  return (a.x() < p.x() - range && b.x() < p.x() - range) ||
+         (a.x() > p.x() + range && b.x() > p.x() + range) ||
+         (a.y() < p.y() - range && b.y() < p.y() - range) ||
+         (a.y() > p.y() + range && b.y() > p.y() + range);
+}
+
 /// A wall in the viewer frame, `start` its counter-clockwise-first end as seen from the
 /// viewpoint (the origin). `facing`: the area side looks at the viewer (only those can be
 /// seen; the others only block rays, for a viewpoint on the boundary).
@@ -89,6 +99,7 @@ std::vector<SweepEdge> sweep_edges(const Area& area, const ViewerFrame& frame, d
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Eigen::Vector2d& a = ring[i];
       const Eigen::Vector2d& b = ring[i + 1 < ring.size() ? i + 1 : 0];
+      if (finite && beyond_box(frame.origin, range, a, b)) continue;
       const double turn = cross(a - frame.origin, b - frame.origin);  // > 0: area faces viewer
       // Twice the triangle's area bounds the distance to the wall's line: test only near ones.
       if (turn * turn <= boundary2 * (b - a).squaredNorm()) {
