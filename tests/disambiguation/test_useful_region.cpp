@@ -1,6 +1,9 @@
 // Seed 002 §IV-D step 6: the useful region of an overlay intersection.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "disambiguation/view_cases.hpp"
 #include "gridloc/engine/disambiguation/range_view.hpp"
 #include "gridloc/grids/error.hpp"
@@ -60,6 +63,43 @@ TEST(UsefulRegion, TwoEdgesGiveTheUnionAndAHoleBlocksTheView) {
   EXPECT_TRUE(region_holds(far, {0.5, 1.9}));
   EXPECT_FALSE(region_holds(far, {2.4, 1.0}));  // right behind the pillar
   EXPECT_FALSE(region_holds(far, {3.0, 1.0}));  // in the pillar
+}
+
+/// Whether p sees some point of the edge no farther than `range`: brute force over 400 points
+/// along it and the edge-rectangle's width.
+bool sees_edge(const Area& area, const Eigen::Vector2d& p, const Segment& edge, double range) {
+  const Eigen::Vector2d along = (edge.b - edge.a).normalized();
+  const double off_line = std::abs(test::cross2(along, p - edge.a));
+  if (off_line > range + 1e-6) return false;
+  for (int k = 0; k <= 400; ++k) {
+    const Eigen::Vector2d q = edge.a + (k / 400.0) * (edge.b - edge.a);
+    const double length = (q - p).norm();
+    if (test::cast_ray(area, p, (q - p) / length) >= length - 1e-6) return true;
+  }
+  return false;
+}
+
+// Soundness of the inner approximation on random rooms: every point of U lies in oi, within
+// range of the edge's line, and sees the edge; and U is not empty.
+TEST(UsefulRegion, EveryPointOfTheRegionSeesAnInternalEdge) {
+  std::mt19937 rng(9002);
+  for (int room = 0; room < 6; ++room) {
+    const Area oi = test::random_star_room(rng);
+    const std::size_t i = test::uniform_int(rng, 0, static_cast<int>(oi.outer.size()) - 1);
+    const Segment edge{oi.outer[i], oi.outer[(i + 1) % oi.outer.size()]};
+    const double range = room % 2 ? kUnlimitedRange : test::uniform_real(rng, 0.5, 3.0);
+    const Region useful = useful_region(oi, {edge}, range);
+    ASSERT_FALSE(useful.empty());
+    int held = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      const Eigen::Vector2d p(test::uniform_real(rng, -5, 5), test::uniform_real(rng, -5, 5));
+      if (!region_holds(useful, p)) continue;
+      ++held;
+      EXPECT_TRUE(test::strictly_inside(oi, p)) << p.transpose();
+      EXPECT_TRUE(sees_edge(oi, p, edge, range)) << "room " << room << " at " << p.transpose();
+    }
+    EXPECT_GT(held, 0);
+  }
 }
 
 TEST(UsefulRegion, BadInputThrows) {
