@@ -92,7 +92,8 @@ std::vector<SweepEdge> sweep_edges(const Area& area, const ViewerFrame& frame, d
   const double range2 = range * range;  // +inf for kUnlimitedRange
   const double boundary2 = kOnBoundaryDistance * kOnBoundaryDistance;
   const bool finite = std::isfinite(range);
-  std::vector<SweepEdge> edges, back_faces;
+  std::vector<SweepEdge> edges;
+  std::vector<std::pair<const Eigen::Vector2d*, const Eigen::Vector2d*>> back_faces;
   edges.reserve(area.outer.size() + 4 * area.holes.size());
   bool on_boundary = false;
   auto collect = [&](const Polygon& ring) {
@@ -107,12 +108,13 @@ std::vector<SweepEdge> sweep_edges(const Area& area, const ViewerFrame& frame, d
       }
       if (finite && squared_distance_to_segment(frame.origin, a, b) > range2) continue;
       if (turn > 0.0) edges.push_back({frame(a), frame(b), true});
-      if (turn < 0.0) back_faces.push_back({frame(b), frame(a), false});
+      if (turn < 0.0) back_faces.emplace_back(&a, &b);
     }
   };
   collect(area.outer);
   for (const Polygon& hole : area.holes) collect(hole);
-  if (on_boundary) edges.insert(edges.end(), back_faces.begin(), back_faces.end());
+  if (!on_boundary) return edges;
+  for (const auto& [a, b] : back_faces) edges.push_back({frame(*b), frame(*a), false});
   return edges;
 }
 
