@@ -253,6 +253,31 @@ TEST(VisibilityPolygon, AreaMatchesDenseRays) {
   }
 }
 
+// useful_region's samples stand 1e-7 from a wall: the many slivers of intervals toward that
+// wall must stay on it (they once produced points at infinity).
+TEST(VisibilityPolygon, ViewpointsJustOffAWallStayFinite) {
+  std::mt19937 rng(7);
+  for (const int columns : {12, 40}) {
+    const Area area = test::random_rectilinear_room(rng, columns);
+    int checked = 0;
+    for (const Segment& edge : area_edges(area)) {
+      const Eigen::Vector2d along = (edge.b - edge.a).normalized();
+      for (int k = 0; k < 16; ++k) {  // as useful_region spreads its samples
+        const Eigen::Vector2d viewpoint = edge.a + (k + 0.5) / 16 * (edge.b - edge.a) +
+                                          1e-7 * Eigen::Vector2d(-along.y(), along.x());
+        const Polygon polygon = visibility_polygon(area, viewpoint, kUnlimitedRange);
+        for (const Eigen::Vector2d& p : polygon) ASSERT_TRUE(p.allFinite()) << viewpoint;
+        const double size = 0.5 * signed_area2(polygon);
+        ASSERT_GT(size, 0.0);
+        ASSERT_LE(size, area_size(area) + 1e-9);
+        if (k == 7 && ++checked % 20 == 0) {
+          EXPECT_NEAR(size, fan_area(area, viewpoint, kUnlimitedRange), 0.01 * size);
+        }
+      }
+    }
+  }
+}
+
 TEST(VisibilityPolygon, SquareCentreWithinRangeIsAPolygonOfTheCircle) {
   const Area square{rectangle(-5, -5, 5, 5), {}};
   const Polygon disk = visibility_polygon(square, {0.5, 0.5}, 1.0, 64);

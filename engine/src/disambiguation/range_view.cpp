@@ -395,35 +395,44 @@ void append_arc_between(const Eigen::Vector2d& from, const Eigen::Vector2d& to, 
   if (span > 0.0) append_arc(from.normalized(), span, range, max_chord_angle, ring);
 }
 
-/// The boundary of the seen region over one interval: the wall where it is within range, arcs
-/// of the range circle where it is not (seed 002 §IV-B: nothing beyond d is seen).
-void append_interval(const std::vector<SweepEdge>& edges, const SweepInterval& interval,
-                     double range, double max_chord_angle, Polygon& ring) {
-  const bool open = interval.edge < 0;
-  if (open && std::isfinite(range)) {
-    append_arc(interval.from, interval_span(interval), range, max_chord_angle, ring);
-    return;
-  }
-  if (open || !edges[interval.edge].facing) {  // looking out of the area from its boundary
-    ring.push_back(Eigen::Vector2d::Zero());
-    return;
-  }
-  const SweepEdge& edge = edges[interval.edge];
+/// The boundary of the seen region over an interval whose nearest wall faces the viewer: the
+/// wall where it is within range, arcs of the range circle where it is not (seed 002 §IV-B:
+/// nothing beyond d is seen).
+void append_wall(const SweepEdge& edge, const SweepInterval& interval, double range,
+                 double max_chord_angle, Polygon& ring) {
   const double t_from = edge_parameter(edge, interval.from);
   const double t_to = edge_parameter(edge, interval.to);
+  const Eigen::Vector2d d = edge.end - edge.start;
+  if (t_to <= t_from) {  // a sliver of an interval, rounded to one point of the wall
+    const Eigen::Vector2d p = edge.start + t_from * d;
+    ring.push_back(p.norm() <= range ? p : Eigen::Vector2d(range * p.normalized()));
+    return;
+  }
   double disk0 = 0.0, disk1 = 0.0;
   const bool meets = disk_parameters(edge, range, disk0, disk1);
   const double t0 = std::max(t_from, disk0), t1 = std::min(t_to, disk1);
-  if (!meets || t0 >= t1) {
+  if (!meets || t0 >= t1) {  // the wall lies beyond range (only for a finite range)
     append_arc(interval.from, interval_span(interval), range, max_chord_angle, ring);
     return;
   }
-  const Eigen::Vector2d d = edge.end - edge.start;
   const Eigen::Vector2d p0 = edge.start + t0 * d, p1 = edge.start + t1 * d;
   if (t0 > t_from) append_arc_between(interval.from, p0, range, max_chord_angle, ring);
   ring.push_back(p0);
   ring.push_back(p1);
   if (t1 < t_to) append_arc_between(p1, interval.to, range, max_chord_angle, ring);
+}
+
+/// The boundary of the seen region over one interval of the sweep.
+void append_interval(const std::vector<SweepEdge>& edges, const SweepInterval& interval,
+                     double range, double max_chord_angle, Polygon& ring) {
+  const bool open = interval.edge < 0;
+  if (open && std::isfinite(range)) {  // no wall within range
+    append_arc(interval.from, interval_span(interval), range, max_chord_angle, ring);
+  } else if (open || !edges[interval.edge].facing) {  // out of the area from its boundary
+    ring.push_back(Eigen::Vector2d::Zero());
+  } else {
+    append_wall(edges[interval.edge], interval, range, max_chord_angle, ring);
+  }
 }
 
 /// The ring without consecutive (cyclically) repeated vertices.
