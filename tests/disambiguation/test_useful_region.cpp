@@ -79,12 +79,12 @@ bool sees_edge(const Area& area, const Eigen::Vector2d& p, const Segment& edge, 
   return false;
 }
 
-// Soundness of the inner approximation on random rooms: every point of U lies in oi, within
-// range of the edge's line, and sees the edge; and U is not empty.
+// Soundness of the inner approximation on random star and rectilinear rooms: every point of U lies
+// in oi, within range of the edge's line, and sees the edge; and U is not empty.
 TEST(UsefulRegion, EveryPointOfTheRegionSeesAnInternalEdge) {
   std::mt19937 rng(9002);
-  for (int room = 0; room < 6; ++room) {
-    const Area oi = test::random_star_room(rng);
+  for (int room = 0; room < 8; ++room) {
+    const Area oi = room < 4 ? test::random_star_room(rng) : test::random_rectilinear_room(rng, 12);
     const std::size_t i = test::uniform_int(rng, 0, static_cast<int>(oi.outer.size()) - 1);
     const Segment edge{oi.outer[i], oi.outer[(i + 1) % oi.outer.size()]};
     const double range = room % 2 ? kUnlimitedRange : test::uniform_real(rng, 0.5, 3.0);
@@ -92,7 +92,9 @@ TEST(UsefulRegion, EveryPointOfTheRegionSeesAnInternalEdge) {
     ASSERT_FALSE(useful.empty());
     int held = 0;
     for (int trial = 0; trial < 400; ++trial) {
-      const Eigen::Vector2d p(test::uniform_real(rng, -5, 5), test::uniform_real(rng, -5, 5));
+      const Eigen::Vector2d p =
+          room < 4 ? Eigen::Vector2d(test::uniform_real(rng, -5, 5), test::uniform_real(rng, -5, 5))
+                   : Eigen::Vector2d(test::uniform_real(rng, 0, 12), test::uniform_real(rng, 0, 8));
       if (!region_holds(useful, p)) continue;
       ++held;
       EXPECT_TRUE(test::strictly_inside(oi, p)) << p.transpose();
