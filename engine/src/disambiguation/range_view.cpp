@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gridloc/grids/error.hpp"
 
@@ -70,8 +73,9 @@ struct SweepEdge {
   bool facing = true;
 };
 
-/// One angular interval of the sweep, `from` to `to` counter-clockwise (unit directions,
-/// pseudo angles `from_key` < `to_key`), with the nearest wall throughout it (-1: none).
+/// One angular interval of the sweep, `from` to `to` counter-clockwise (directions of any
+/// length: vertices, or the -x axis; pseudo angles `from_key` < `to_key`), with the nearest
+/// wall throughout it (-1: none).
 struct SweepInterval {
   Eigen::Vector2d from, to;
   double from_key = -2.0, to_key = 2.0;
@@ -118,12 +122,15 @@ std::vector<SweepEdge> sweep_edges(const Area& area, const ViewerFrame& frame, d
   return edges;
 }
 
-/// A direction strictly inside the counter-clockwise turn from u to v (unit vectors).
+/// A direction strictly inside the counter-clockwise turn from u to v, of any lengths: a
+/// positive combination lies inside a turn below pi, a negative one inside a turn above it.
 Eigen::Vector2d bisector(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
   Eigen::Vector2d mid = u + v;
   const double turn = cross(u, v);
   if (turn < 0.0 || (turn == 0.0 && u.dot(v) < 0.0)) mid = -mid;  // a turn of pi or more
-  if (mid.squaredNorm() < 1e-24) mid = Eigen::Vector2d(-u.y(), u.x());
+  if (mid.squaredNorm() <= 1e-24 * (u.squaredNorm() + v.squaredNorm())) {
+    mid = Eigen::Vector2d(-u.y(), u.x());
+  }
   return mid;
 }
 
@@ -153,10 +160,11 @@ std::vector<SweepEvent> sweep_events(const std::vector<SweepEdge>& edges,
     if (close < open) initially_active.push_back(e);  // crosses the -x axis
     const bool shared = !events.empty() && events.back().close == e - 1 && events.back().open < 0 &&
                         edges[e - 1].end == edges[e].start;
-    if (shared)
+    if (shared) {
       events.back().open = e;
-    else
+    } else {
       events.push_back({open, e, -1});
+    }
     events.push_back({close, -1, e});
   }
   // Stable: the input is nearly sorted (facing walls along a ring turn counter-clockwise).
@@ -208,7 +216,7 @@ class NearestWall {
       if (nearest_ >= 0) opened_.push_back(nearest_);
       nearest_ = nearest_edge(edges_, opened_, direction);
     }
-    rescan_ = false;
+    rescan_ = nearest_ < 0 && !active_.members().empty();  // rounding found no hit: retry
     opened_.clear();
     return nearest_;
   }
@@ -235,8 +243,7 @@ std::vector<SweepInterval> sweep(const std::vector<SweepEdge>& edges) {
     const double key = events[i].key;
     if (key > current.from_key) {
       const SweepEvent& event = events[i];
-      current.to =
-          (event.open >= 0 ? edges[event.open].start : edges[event.close].end).normalized();
+      current.to = event.open >= 0 ? edges[event.open].start : edges[event.close].end;
       current.to_key = key;
       current.edge = nearest.over(bisector(current.from, current.to));
       intervals.push_back(current);
@@ -381,18 +388,19 @@ double interval_span(const SweepInterval& interval) {
 void append_arc(const Eigen::Vector2d& from, double span, double range, double max_chord_angle,
                 Polygon& ring) {
   const int chords = std::max(1, static_cast<int>(std::ceil(span / max_chord_angle - 1e-12)));
+  const Eigen::Vector2d unit = from.normalized();
   for (int j = 0; j <= chords; ++j) {
     const double angle = span * j / chords;
     const double c = std::cos(angle), s = std::sin(angle);
     ring.push_back(range *
-                   Eigen::Vector2d(c * from.x() - s * from.y(), s * from.x() + c * from.y()));
+                   Eigen::Vector2d(c * unit.x() - s * unit.y(), s * unit.x() + c * unit.y()));
   }
 }
 
 void append_arc_between(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double range,
                         double max_chord_angle, Polygon& ring) {
   const double span = std::atan2(cross(from, to), from.dot(to));
-  if (span > 0.0) append_arc(from.normalized(), span, range, max_chord_angle, ring);
+  if (span > 0.0) append_arc(from, span, range, max_chord_angle, ring);
 }
 
 /// The boundary of the seen region over an interval whose nearest wall faces the viewer: the
