@@ -7,8 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <vector>
 
+#include "random_cases.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
@@ -84,6 +86,49 @@ TEST(GridOverlay, UsefulCellsAreTheOiCellsWithinRangeOfAnInternalCell) {
   }
   EXPECT_EQ(overlay.useful_count, expected);
   EXPECT_EQ(expected, 2 * 6 * 28);  // six columns on each internal side
+}
+
+/// Whether the segment between two start-frame points runs through OI cells only (brute
+/// force: samples every 1/50 cell).
+bool sees_through_oi(const GridOverlay& overlay, const Eigen::Vector2d& a,
+                     const Eigen::Vector2d& b) {
+  const int samples = 1 + static_cast<int>(50.0 * (b - a).norm() / overlay.grid.resolution);
+  for (int k = 0; k <= samples; ++k) {
+    if (!overlay.oi_contains(a + (b - a) * (static_cast<double>(k) / samples))) return false;
+  }
+  return true;
+}
+
+TEST(GridOverlay, UsefulCellsMatchBruteForceVisibilityAmongPillars) {
+  OccupancyMap map = walled_room(40, 30, 0.1, {0.0, 0.0});
+  std::mt19937 rng(11);
+  for (int pillar = 0; pillar < 6; ++pillar) {
+    const int px = test::uniform_int(rng, 3, 35), py = test::uniform_int(rng, 3, 25);
+    map.at(px, py) = map.at(px + 1, py) = map.at(px, py + 1) = CellState::Occupied;
+  }
+  const std::vector<Pose2> hypotheses{{2.05, 1.55, 0.0}, {2.45, 1.55, 0.0}};
+  const double range = 0.45;
+  const GridOverlay overlay = make_grid_overlay(map, hypotheses, range, {0.05, 0.05});
+  const std::vector<Eigen::Vector2d> internal = centers_of(overlay, overlay.internal);
+  int visible = 0, visible_in_u = 0;
+  for (const Eigen::Vector2d& c : centers_of(overlay, overlay.in_oi)) {
+    bool within = false, seen = false;
+    for (const Eigen::Vector2d& s : internal) {
+      if ((s - c).norm() > range) continue;
+      within = true;
+      seen = seen || sees_through_oi(overlay, s, c);
+    }
+    const bool in_u =
+        overlay.useful[overlay.grid.index(overlay.cell_of(c).ix, overlay.cell_of(c).iy)];
+    if (in_u) {
+      EXPECT_TRUE(within) << c.transpose();  // never beyond the range
+    }
+    visible += seen ? 1 : 0;
+    visible_in_u += seen && in_u ? 1 : 0;
+  }
+  ASSERT_GT(visible, 100);
+  EXPECT_GE(visible_in_u, 0.99 * visible);  // rays at discrete angles: all but a few
+  EXPECT_LT(overlay.useful_count, overlay.oi_count);
 }
 
 TEST(GridOverlay, UnlimitedRangeMakesAConvexOiUseful) {

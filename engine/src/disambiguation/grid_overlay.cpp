@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -179,34 +180,35 @@ int mark_internal(GridOverlay& overlay) {
   return count;
 }
 
-/// Ray directions for U: at least 128, and enough that neighbouring rays are at most about one
-/// cell apart at the ray's length (cells).
-std::vector<Eigen::Vector2d> ray_directions(double length_cells) {
-  const int n = std::max(128, static_cast<int>(std::ceil(2.0 * std::numbers::pi * length_cells)));
-  std::vector<Eigen::Vector2d> directions;
-  directions.reserve(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const double a = 2.0 * std::numbers::pi * k / n;
-    directions.emplace_back(std::cos(a), std::sin(a));
-  }
-  return directions;
-}
+/// Casting rays for U from one internal cell through OI, marking the cells they cross.
+struct UsefulRays {
+  const GridOverlay& overlay;
+  std::vector<std::uint8_t>& useful;  ///< the marks
+  int& marked;                        ///< cells marked so far
+  Cell from;                          ///< the internal cell the rays start at (its centre)
+  double limit = 0.0;                 ///< the range (cells)
+};
 
-/// Marks in `useful` the OI cells a ray from the centre of `from` along `d` crosses before it
-/// leaves OI, whose centres lie within `limit` cells of the start (Amanatides-Woo traversal).
-void cast_useful_ray(const GridOverlay& overlay, const Cell& from, const Eigen::Vector2d& d,
-                     double limit, std::vector<std::uint8_t>& useful) {
-  const GridGeometry& g = overlay.grid;
+/// Marks the OI cells a ray from `rays.from` at angle a crosses before it leaves OI, whose
+/// centres lie within the range (Amanatides-Woo traversal); returns where it left OI or passed
+/// the range (cells from the start).
+double cast_useful_ray(const UsefulRays& rays, double a) {
+  const GridGeometry& g = rays.overlay.grid;
   const double inf = std::numeric_limits<double>::infinity();
-  const int sx = d.x() > 0.0 ? 1 : -1, sy = d.y() > 0.0 ? 1 : -1;
-  const double tdx = d.x() != 0.0 ? 1.0 / std::abs(d.x()) : inf;
-  const double tdy = d.y() != 0.0 ? 1.0 / std::abs(d.y()) : inf;
+  const double dx = std::cos(a), dy = std::sin(a);
+  const int sx = dx > 0.0 ? 1 : -1, sy = dy > 0.0 ? 1 : -1;
+  const double tdx = dx != 0.0 ? 1.0 / std::abs(dx) : inf;
+  const double tdy = dy != 0.0 ? 1.0 / std::abs(dy) : inf;
   double tx = 0.5 * tdx, ty = 0.5 * tdy;  // the ray starts at the cell centre
-  int ix = from.ix, iy = from.iy;
-  for (double t = 0.0; t <= limit;) {
+  int ix = rays.from.ix, iy = rays.from.iy;
+  double t = 0.0;
+  while (t <= rays.limit) {
     const std::size_t i = g.index(ix, iy);
-    const double ddx = ix - from.ix, ddy = iy - from.iy;
-    if (ddx * ddx + ddy * ddy <= limit * limit) useful[i] = 1;
+    const double cx = ix - rays.from.ix, cy = iy - rays.from.iy;
+    if (!rays.useful[i] && cx * cx + cy * cy <= rays.limit * rays.limit) {
+      rays.useful[i] = 1;
+      ++rays.marked;
+    }
     if (tx < ty) {
       t = tx;
       tx += tdx;
@@ -216,7 +218,31 @@ void cast_useful_ray(const GridOverlay& overlay, const Cell& from, const Eigen::
       ty += tdy;
       iy += sy;
     }
-    if (!g.contains(ix, iy) || !overlay.in_oi[g.index(ix, iy)]) return;
+    if (!g.contains(ix, iy) || !rays.overlay.in_oi[g.index(ix, iy)]) break;
+  }
+  return std::min(t, rays.limit);
+}
+
+/// Adds rays between angles a0 < a1 (whose rays reached t0 and t1 cells) until neighbouring
+/// rays are at most a cell apart where the longer one ends, so no opening a cell wide is
+/// stepped over and distant cells are not missed.
+void fill_between(const UsefulRays& rays, double a0, double t0, double a1, double t1) {
+  if (std::max(t0, t1) * (a1 - a0) <= 1.0) return;
+  const double middle = 0.5 * (a0 + a1);
+  const double t = cast_useful_ray(rays, middle);
+  fill_between(rays, a0, t0, middle, t);
+  fill_between(rays, middle, t, a1, t1);
+}
+
+/// Casts the rays of one internal cell: 128 evenly spread, then more where they diverge.
+void cast_from(const UsefulRays& rays) {
+  constexpr int kBaseRays = 128;
+  const double step = 2.0 * std::numbers::pi / kBaseRays;
+  std::array<double, kBaseRays + 1> reach{};
+  for (int k = 0; k < kBaseRays; ++k) reach[k] = cast_useful_ray(rays, k * step);
+  reach[kBaseRays] = reach[0];  // the circle closes
+  for (int k = 0; k < kBaseRays; ++k) {
+    fill_between(rays, k * step, reach[k], (k + 1) * step, reach[k + 1]);
   }
 }
 
@@ -224,18 +250,16 @@ void cast_useful_ray(const GridOverlay& overlay, const Cell& from, const Eigen::
 /// visibility polygon of the internal edges clipped to the range). Returns the count.
 int mark_useful(GridOverlay& overlay) {
   const GridGeometry& g = overlay.grid;
-  const double diagonal = std::hypot(g.width, g.height);
-  const double limit = std::min(overlay.range / g.resolution, diagonal);
-  const std::vector<Eigen::Vector2d> directions = ray_directions(limit);
+  const double limit = std::min(overlay.range / g.resolution, std::hypot(g.width, g.height));
+  int marked = 0;
   for (int iy = 0; iy < g.height; ++iy) {
     for (int ix = 0; ix < g.width; ++ix) {
+      if (marked == overlay.oi_count) return marked;  // all of OI is useful already
       if (!overlay.internal[g.index(ix, iy)]) continue;
-      for (const Eigen::Vector2d& d : directions) {
-        cast_useful_ray(overlay, {ix, iy}, d, limit, overlay.useful);
-      }
+      cast_from(UsefulRays{overlay, overlay.useful, marked, {ix, iy}, limit});
     }
   }
-  return static_cast<int>(std::count(overlay.useful.begin(), overlay.useful.end(), 1));
+  return marked;
 }
 
 }  // namespace

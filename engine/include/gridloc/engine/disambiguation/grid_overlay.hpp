@@ -46,8 +46,8 @@ struct GridOverlay {
 /// The lattice spans the intersection of the maps' free-cell bounding boxes seen in the start
 /// frame, plus one cell each side (nothing outside can be in OI). OI grows 4-connected from
 /// the anchor's cell (start frame, m). U casts rays from every internal cell centre through OI
-/// cells (enough directions that neighbouring rays are at most about a cell apart at the
-/// range), marking each crossed cell whose centre is within `range` (m; +inf: unlimited).
+/// cells (128 directions, split until neighbouring rays end at most a cell apart), marking
+/// each crossed cell whose centre is within `range` (m; +inf: unlimited) of the ray's start.
 /// Throws gridloc::Error for an empty map or hypothesis list, a pose or anchor that is not
 /// finite, a range that is not positive, or an anchor whose cell is not free in every map.
 GridOverlay make_grid_overlay(const OccupancyMap& map, const std::vector<Pose2>& hypotheses,
