@@ -8,6 +8,7 @@
 ///   per iteration in turn (10 predicted 90-beam scans and their classes).
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
