@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "gridloc/engine/disambiguation/grid_overlay.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "test_support.hpp"
 
@@ -68,6 +69,31 @@ TEST(ScanClasses, InfoOfDistinctViews) {
   EXPECT_DOUBLE_EQ(grid_info(map, three, {0.0, 0.0}, 10.0), 2.0);  // 3 x (1/3)(3 - 1)
   EXPECT_TRUE(scan_classes(map, {}, {0.0, 0.0}, 10.0).empty());
   EXPECT_DOUBLE_EQ(grid_info(map, {}, {0.0, 0.0}, 10.0), 0.0);
+}
+
+TEST(ScanClasses, InformationOnlyInTheUsefulRegion) {
+  // seed 002 §IV-C step 7: only points that see a landmark within range carry information;
+  // on the grid those are U's cells. Two starts 1 m apart in a 3.8 x 2.8 m room, 0.55 m sensor.
+  const OccupancyMap map = test::walled_room(40, 30, 0.1, {0.0, 0.0});
+  const std::vector<Pose2> hypotheses{{2.0, 1.5, 0.0}, {3.0, 1.5, 0.0}};
+  const double range = 0.55;
+  const GridOverlay overlay = make_grid_overlay(map, hypotheses, range);
+  int informative = 0;
+  for (int iy = 0; iy < overlay.grid.height; ++iy) {
+    for (int ix = 0; ix < overlay.grid.width; ++ix) {
+      const std::size_t i = overlay.grid.index(ix, iy);
+      if (!overlay.in_oi[i]) continue;
+      const double info = grid_info(map, hypotheses, overlay.cell_center({ix, iy}), range);
+      if (info > 0.0) {
+        ++informative;
+        EXPECT_TRUE(overlay.useful[i]) << ix << " " << iy;
+      }
+      if (overlay.internal[i]) {
+        EXPECT_DOUBLE_EQ(info, 1.0) << ix << " " << iy;  // one wall 5 cm away, the other 1 m
+      }
+    }
+  }
+  EXPECT_GE(informative, overlay.internal_count);
 }
 
 TEST(ScanClasses, BadInputThrows) {
