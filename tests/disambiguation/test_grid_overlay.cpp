@@ -148,6 +148,24 @@ TEST(GridOverlay, RotatedHypothesesOfASquareRoomKeepTheWholeRoom) {
   EXPECT_EQ(overlay.useful_count, 0);
 }
 
+TEST(GridOverlay, ArbitraryHeadingOverlapIsTheRectanglesIntersection) {
+  // Heading 0.7 rad: the room appears rotated in the start frame; the second start lies 1 m
+  // ahead of the first, so OI is the room intersected with itself moved by
+  // R(0.7) (1, 0) = (0.765, 0.644) m in the room's frame: (3.8 - 0.765) x (2.8 - 0.644) m.
+  const OccupancyMap map = walled_room(40, 30, 0.1, {0.0, 0.0});
+  const Pose2 first{2.0, 1.5, 0.7};
+  const Pose2 second = compose(first, {1.0, 0.0, 0.0});
+  const double expected = (3.8 - std::cos(0.7)) * (2.8 - std::sin(0.7)) / (0.1 * 0.1);
+  const GridOverlay overlay =
+      make_grid_overlay(map, {first, second}, std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(overlay.oi_count, expected, 40.0);      // cells cut by the rotated sides
+  EXPECT_GT(overlay.internal_count, 60);              // every side faces the other map
+  EXPECT_EQ(overlay.useful_count, overlay.oi_count);  // convex, unlimited range
+  const GridOverlay alone = make_grid_overlay(map, {first, first}, 1.0);
+  EXPECT_NEAR(alone.oi_count, 38 * 28, 15.0);
+  EXPECT_EQ(alone.internal_count, 0);
+}
+
 TEST(GridOverlay, FollowsTheMapsOriginAndYaw) {
   const double yaw = 0.3;
   OccupancyMap map = walled_room(30, 20, 0.1, {1.0, -2.0});
