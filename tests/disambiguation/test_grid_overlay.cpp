@@ -158,7 +158,7 @@ TEST(GridOverlay, ArbitraryHeadingOverlapIsTheRectanglesIntersection) {
   const double expected = (3.8 - std::cos(0.7)) * (2.8 - std::sin(0.7)) / (0.1 * 0.1);
   const GridOverlay overlay =
       make_grid_overlay(map, {first, second}, std::numeric_limits<double>::infinity());
-  EXPECT_NEAR(overlay.oi_count, expected, 40.0);      // cells cut by the rotated sides
+  EXPECT_NEAR(overlay.oi_count, expected, 20.0);      // cells cut by the rotated sides
   EXPECT_GT(overlay.internal_count, 60);              // every side faces the other map
   EXPECT_EQ(overlay.useful_count, overlay.oi_count);  // convex, unlimited range
   const GridOverlay alone = make_grid_overlay(map, {first, first}, 1.0);
