@@ -127,6 +127,7 @@ nlohmann::json plan_json(const MinimumDistancePlan& plan, int true_index,
           {"ended", plan.ended},
           {"true_hypothesis_survived", survived},
           {"lower_bound_m", number_or_null(bound.distance)},
+          {"pairwise_lower_bound_m", number_or_null(bound.pairwise)},
           {"lower_bound_is_optimum", bound.optimal}};
 }
 
@@ -204,10 +205,11 @@ void make_out_dir(const std::string& out) {
 }
 
 /// The lower bound, or 0 (the optimum) for a start no other place matches.
-TravelBound bound_for(const PolygonPlanningSpace& space, const std::vector<Pose2>& hypotheses) {
+TravelBound bound_for(const PolygonPlanningSpace& space, const std::vector<Pose2>& hypotheses,
+                      int true_index) {
   if (hypotheses.size() < 2) return TravelBound{0.0, Eigen::Vector2d::Zero(), 0.0, 0, true};
   const double range = space.options().range;
-  return travel_lower_bound(space, hypotheses, 0.0,
+  return travel_lower_bound(space, hypotheses, true_index, 0.0,
                             std::isfinite(range) ? range / 4.0 : kUnlimitedRange);
 }
 
@@ -224,7 +226,7 @@ void run(const DisambiguateArgs& args) {
   const MinimumDistancePlan plan = localize_with_minimum_travel(
       space, hypotheses, perfect_sensing(space.free_world(), start, hypotheses, args.range),
       options);
-  const TravelBound bound = bound_for(space, hypotheses);
+  const TravelBound bound = bound_for(space, hypotheses, true_index);
   const nlohmann::json out = plan_json(plan, true_index, bound);
   if (args.json) {
     std::cout << out.dump(2) << "\n";

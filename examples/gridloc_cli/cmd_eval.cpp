@@ -158,11 +158,31 @@ EvalOptions eval_options(const EvalArgs& args) {
   return options;
 }
 
-void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
-  if (protocol.name == "disambiguation") {
-    if (drive.given) throw Error("--drive and --protocol disambiguation are different protocols");
-    return run_disambiguation_eval(protocol.disambiguation, args.seed, args.json, args.quiet);
+/// Seed 002's protocol on random offices, or with --sensor the engine in the loop on --maps.
+void run_disambiguation(const EvalArgs& args, const DriveArgs& drive,
+                        const ProtocolArgs& protocol) {
+  if (drive.given) throw Error("--drive and --protocol disambiguation are different protocols");
+  const DisambiguationEvalArgs& options = protocol.disambiguation;
+  if (options.sensor.empty()) {
+    return run_disambiguation_eval(options, args.seed, args.json, args.quiet);
   }
+  EvalArgs maps = args;
+  if (!args.maps_given) maps.maps = "room_symmetric,apartment_small";
+  EngineLoopInputs inputs;
+  inputs.map_files = map_files(maps, false);
+  if (polygon_maps(inputs.map_files, false)) {
+    throw Error("--sensor runs the engine on occupancy maps, not polygon maps");
+  }
+  inputs.ring = args.ring;
+  inputs.trials = args.trials;
+  inputs.laser_max_range = args.laser.max_range;
+  inputs.laser_sigma_m = args.laser.sigma_m;
+  inputs.laser_beams = args.laser.beams;
+  run_engine_loop_eval(options, inputs, args.seed, args.json, args.quiet);
+}
+
+void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
+  if (protocol.name == "disambiguation") return run_disambiguation(args, drive, protocol);
   check_step(args.step_xy);
   // Polygon maps or a sector estimator: the sector protocol.
   const bool sector_estimators = names_a_sector_estimator(args.estimators);

@@ -4,12 +4,17 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/disambiguation_protocol.hpp"
+#include "gridloc/engine/evaluation/engine_disambiguation.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/sonar_ring.hpp"
+#include "limit_options.hpp"
+#include "options.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -66,6 +71,8 @@ nlohmann::json result_json(const DisambiguationProtocolResult& result) {
                     {"mean_stops", row.mean_stops},
                     {"mean_lower_bound", row.mean_lower_bound},
                     {"mean_bound_ratio", row.mean_bound_ratio},
+                    {"mean_pairwise_bound", row.mean_pairwise_bound},
+                    {"mean_pairwise_ratio", row.mean_pairwise_ratio},
                     {"mean_hypotheses", row.mean_hypotheses},
                     {"median_ms", row.median_ms},
                     {"mean_stop_ms", row.mean_stop_ms}});
@@ -77,8 +84,9 @@ void print_table(const DisambiguationEvalArgs& args, const DisambiguationProtoco
   std::printf(
       "Seed 002 protocol: %d offices x %d starts x %d repeats = %d trials per configuration\n",
       args.environments, args.starts, args.repeats, result.trials);
-  std::printf("%-4s %-9s %6s %6s %9s %8s %6s %9s %7s %6s %9s\n", "alg", "strategy", "points",
-              "range", "path", "resolved", "stops", "bound", "ratio", "hyps", "ms/stop");
+  std::printf("%-4s %-9s %6s %6s %9s %8s %6s %8s %7s %8s %7s %6s %9s\n", "alg", "strategy",
+              "points", "range", "path", "resolved", "stops", "bound", "ratio", "pairwise", "ratio",
+              "hyps", "ms/stop");
   for (const DisambiguationConfiguration& row : result.configurations) {
     const std::string range = std::isfinite(row.range) ? std::to_string(row.range) : "inf";
     std::printf("%-4s %-9s %6d %6.6s %9.3f %7.1f%% %6.2f %9.3f %7.2f %6.1f %9.2f\n",
@@ -88,7 +96,97 @@ void print_table(const DisambiguationEvalArgs& args, const DisambiguationProtoco
   }
 }
 
+/// A progress line: `\r` on a terminal, one line per tenth otherwise.
+std::function<void(int, int)> progress_line(const char* label, bool quiet) {
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  return [label, quiet, terminal, last = -1](int done, int total) mutable {
+    if (quiet) return;
+    const int tenth = 10 * done / total;
+    if (terminal) {
+      std::fprintf(stderr, "\r[%s] %d/%d trials", label, done, total);
+      if (done == total) std::fprintf(stderr, "\n");
+    } else if (tenth != last) {
+      std::fprintf(stderr, "[%s] %d/%d trials\n", label, done, total);
+    }
+    last = tenth;
+  };
+}
+
+EngineDisambiguationOptions engine_loop_options(const DisambiguationEvalArgs& args,
+                                                const EngineLoopInputs& inputs,
+                                                std::uint64_t seed) {
+  const DisambiguationProtocolOptions protocol = protocol_options(args, seed);
+  EngineDisambiguationOptions options;
+  options.trials = inputs.trials;
+  options.seed = seed;
+  options.laser.enabled = args.sensor == "laser";
+  options.laser.max_range = inputs.laser_max_range;
+  options.laser.sigma_m = inputs.laser_sigma_m;
+  options.laser.beams = inputs.laser_beams;
+  options.planner.algorithm = protocol.algorithms.front();
+  options.planner.strategy = protocol.strategies.front();
+  options.planner.points = protocol.points.front();
+  return options;
+}
+
+nlohmann::json engine_loop_json(const DisambiguationEvalArgs& args,
+                                const EngineDisambiguationOptions& options,
+                                const std::vector<EngineDisambiguationResult>& results) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const EngineDisambiguationResult& row : results) {
+    rows.push_back({{"map", row.map},
+                    {"algorithm", algorithm_name(options.planner.algorithm)},
+                    {"strategy", strategy_name(options.planner.strategy)},
+                    {"points", options.planner.points},
+                    {"trials", row.trials},
+                    {"drawn", row.drawn},
+                    {"truth_seeded", row.truth_seeded},
+                    {"true_survived_rate", row.true_survived_rate},
+                    {"wrong_answers", row.wrong_answers},
+                    {"resolved_rate", row.resolved_rate},
+                    {"mean_hypotheses", row.mean_hypotheses},
+                    {"mean_path_length", row.mean_path_length},
+                    {"mean_noise_free_path_length", row.mean_noise_free_path_length},
+                    {"noise_free_resolved_rate", row.noise_free_resolved_rate},
+                    {"mean_stops", row.mean_stops},
+                    {"median_ms", row.median_ms}});
+  }
+  return {{"protocol", "disambiguation"}, {"sensor", args.sensor}, {"configurations", rows}};
+}
+
+void print_engine_loop_table(const DisambiguationEvalArgs& args,
+                             const EngineDisambiguationOptions& options,
+                             const std::vector<EngineDisambiguationResult>& results) {
+  std::printf("Seed 002 with the engine in the loop: %s, %s %s, %d points; ambiguous starts\n",
+              args.sensor.c_str(), algorithm_name(options.planner.algorithm),
+              strategy_name(options.planner.strategy), options.planner.points);
+  std::printf("%-22s %6s %6s %6s %9s %6s %9s %7s %10s %6s %9s\n", "map", "trials", "drawn", "hyps",
+              "survived", "wrong", "resolved", "path", "noise-free", "stops", "median ms");
+  for (const EngineDisambiguationResult& row : results) {
+    std::printf("%-22.22s %6d %6d %6.2f %8.1f%% %6d %8.1f%% %7.2f %10.2f %6.2f %9.1f\n",
+                row.map.c_str(), row.trials, row.drawn, row.mean_hypotheses,
+                100.0 * row.true_survived_rate, row.wrong_answers, 100.0 * row.resolved_rate,
+                row.mean_path_length, row.mean_noise_free_path_length, row.mean_stops,
+                row.median_ms);
+  }
+}
+
 }  // namespace
+
+void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopInputs& inputs,
+                          std::uint64_t seed, bool json, bool quiet) {
+  const EngineDisambiguationOptions options = engine_loop_options(args, inputs, seed);
+  std::vector<EvalMap> maps;
+  for (const std::string& file : inputs.map_files) maps.push_back({file, load_map(file)});
+  const SonarRing ring = load_sonar_ring(inputs.ring, limits());
+  const std::vector<EngineDisambiguationResult> results = run_engine_disambiguation(
+      maps, ring, options, progress_line("eval disambiguation --sensor", quiet));
+  if (json) {
+    std::cout << engine_loop_json(args, options, results).dump(2) << "\n";
+    return;
+  }
+  print_engine_loop_table(args, options, results);
+}
 
 void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
   const std::string note = "--protocol disambiguation: ";
@@ -113,6 +211,12 @@ void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
       ->delimiter(',')
       ->check(CLI::IsMember({"col", "ual"}))
       ->capture_default_str();
+  cmd->add_option("--sensor", args.sensor,
+                  note +
+                      "sonar | laser: the engine in the loop on --maps (default room_symmetric, "
+                      "apartment_small), --trials ambiguous starts each, noisy sensing and "
+                      "odometry")
+      ->check(CLI::IsMember({"sonar", "laser"}));
   cmd->add_option("--strategies", args.strategies,
                   note + "comma-separated: weighted, hybrid (seed 002 §V-A)")
       ->delimiter(',')
@@ -123,20 +227,8 @@ void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
 void run_disambiguation_eval(const DisambiguationEvalArgs& args, std::uint64_t seed, bool json,
                              bool quiet) {
   const DisambiguationProtocolOptions options = protocol_options(args, seed);
-  const bool terminal = isatty(fileno(stderr)) != 0;
-  int last_percent = -1;
   const DisambiguationProtocolResult result =
-      run_disambiguation_protocol(options, [&](int done, int total) {
-        if (quiet) return;
-        const int percent = 100 * done / total;
-        if (terminal) {
-          std::fprintf(stderr, "\r[eval disambiguation] %d/%d trials", done, total);
-          if (done == total) std::fprintf(stderr, "\n");
-        } else if (percent / 10 != last_percent / 10) {
-          std::fprintf(stderr, "[eval disambiguation] %d/%d trials\n", done, total);
-        }
-        last_percent = percent;
-      });
+      run_disambiguation_protocol(options, progress_line("eval disambiguation", quiet));
   if (json) {
     std::cout << result_json(result).dump(2) << "\n";
     return;

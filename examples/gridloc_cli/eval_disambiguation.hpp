@@ -14,6 +14,16 @@ struct DisambiguationEvalArgs {
   std::vector<std::string> ranges = {"inf", "5", "2", "0.9"};
   std::vector<std::string> algorithms = {"col", "ual"};
   std::vector<std::string> strategies = {"weighted", "hybrid"};
+  std::string sensor;  ///< sonar | laser: the engine-in-the-loop variant on --maps
+};
+
+/// The engine-in-the-loop variant's inputs from gridloc eval's own options.
+struct EngineLoopInputs {
+  std::vector<std::string> map_files;  ///< occupancy maps
+  std::string ring;                    ///< sonar ring YAML
+  int trials = 100;                    ///< ambiguous starts per map
+  double laser_max_range = 8.0, laser_sigma_m = 0.01;
+  int laser_beams = 360;
 };
 
 /// Registers --environments, --starts, --repeats, --points, --range, --algorithms, --strategies
@@ -24,5 +34,10 @@ void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args);
 /// `quiet`.
 void run_disambiguation_eval(const DisambiguationEvalArgs& args, std::uint64_t seed, bool json,
                              bool quiet);
+
+/// The engine-in-the-loop variant (--sensor): each map's ambiguous starts, the planner with
+/// the first of --algorithms, --strategies and --points.
+void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopInputs& inputs,
+                          std::uint64_t seed, bool json, bool quiet);
 
 }  // namespace gridloc::cli

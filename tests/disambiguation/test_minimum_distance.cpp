@@ -59,12 +59,14 @@ TEST(MinimumDistance, NoPathBeatsTheLowerBound) {
   for (const double range : {kUnlimitedRange, 1.5}) {
     const std::vector<Pose2> hypotheses = start_hypotheses(map, kStart, {range, false, 1e-6});
     const TravelBound bound =
-        travel_lower_bound(PolygonPlanningSpace(map, {range, 1e-6, 16}), hypotheses, 0.05);
+        travel_lower_bound(PolygonPlanningSpace(map, {range, 1e-6, 16}), hypotheses, 1, 0.05);
     ASSERT_TRUE(std::isfinite(bound.distance));
+    ASSERT_TRUE(std::isfinite(bound.pairwise));
     EXPECT_FALSE(bound.optimal);
+    EXPECT_GE(bound.pairwise, bound.distance);
     const MinimumDistancePlan plan =
         plan_for(SamplingAlgorithm::Ual, DistanceStrategy::Hybrid, range);
-    EXPECT_GE(plan.path_length, bound.distance - 0.05);  // up to the lattice
+    EXPECT_GE(plan.path_length, bound.pairwise - 0.05);  // up to the lattice
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <string>
 
 #include "grid_useful.hpp"
@@ -12,6 +13,9 @@
 
 namespace gridloc {
 namespace {
+
+/// How far (cells) an anchor outside the cells free in every map may be moved to one.
+constexpr int kAnchorSnapCells = 3;
 
 using Box = Eigen::AlignedBox2d;
 
@@ -110,6 +114,27 @@ GridGeometry make_lattice(const OccupancyMap& map, const std::vector<Pose2>& hyp
   return lattice_over(common, map.geometry.resolution);
 }
 
+/// The anchor's cell, or when it is not free in every map the nearest cell within
+/// kAnchorSnapCells that is (an estimated pose a hair inside a wall); {-1, -1} when none is.
+Cell snapped_anchor(const GridGeometry& lattice, const std::vector<int>& free_maps, int all,
+                    const Cell& anchor) {
+  const auto free_in_all = [&](int ix, int iy) {
+    return lattice.contains(ix, iy) && free_maps[lattice.index(ix, iy)] == all;
+  };
+  Cell best{-1, -1};
+  int best_distance = std::numeric_limits<int>::max();
+  for (int dy = -kAnchorSnapCells; dy <= kAnchorSnapCells; ++dy) {
+    for (int dx = -kAnchorSnapCells; dx <= kAnchorSnapCells; ++dx) {
+      const int distance = dx * dx + dy * dy;
+      if (distance < best_distance && free_in_all(anchor.ix + dx, anchor.iy + dy)) {
+        best = {anchor.ix + dx, anchor.iy + dy};
+        best_distance = distance;
+      }
+    }
+  }
+  return best;
+}
+
 /// Per lattice cell, in how many hypotheses' maps its centre falls on a Free cell.
 std::vector<int> count_free_maps(const OccupancyMap& map, const GridGeometry& lattice,
                                  const std::vector<Pose2>& hypotheses) {
@@ -202,11 +227,9 @@ GridOverlay make_grid_overlay(const OccupancyMap& map, const std::vector<Pose2>&
   overlay.range = range;
   const std::vector<int> free_maps = count_free_maps(map, overlay.grid, hypotheses);
   const int all = static_cast<int>(hypotheses.size());
-  overlay.anchor_cell = overlay.cell_of(anchor);
+  overlay.anchor_cell = snapped_anchor(overlay.grid, free_maps, all, overlay.cell_of(anchor));
   const Cell& a = overlay.anchor_cell;
-  if (!overlay.grid.contains(a.ix, a.iy) || free_maps[overlay.grid.index(a.ix, a.iy)] != all) {
-    throw_anchor_not_free(anchor);
-  }
+  if (!overlay.grid.contains(a.ix, a.iy)) throw_anchor_not_free(anchor);
   const std::size_t cells = overlay.grid.size();
   overlay.in_any.resize(cells);
   for (std::size_t i = 0; i < cells; ++i) overlay.in_any[i] = free_maps[i] > 0 ? 1 : 0;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "gridloc/engine/disambiguation/information.hpp"
 #include "gridloc/engine/disambiguation/region.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
@@ -59,16 +60,6 @@ bool same_view(const RangeScan& a, const RangeScan& b, const ScanEquivalence& op
   return differing < options.share * static_cast<double>(a.ranges.size());
 }
 
-/// seed 002 §IV-A: info = sum_b (s_b / k)(k - s_b). (disambiguation/information.hpp's
-/// expected_eliminations is not in this tree yet.)
-double expected_eliminations(const std::vector<int>& sizes) {
-  double k = 0.0;
-  for (int s : sizes) k += s;
-  double info = 0.0;
-  for (int s : sizes) info += (s / k) * (k - s);
-  return info;
-}
-
 }  // namespace
 
 std::vector<int> scan_classes(const OccupancyMap& map, const std::vector<Pose2>& hypotheses,
@@ -96,13 +87,7 @@ std::vector<int> scan_classes(const OccupancyMap& map, const std::vector<Pose2>&
 
 double grid_info(const OccupancyMap& map, const std::vector<Pose2>& hypotheses,
                  const Eigen::Vector2d& r, double range, const ScanEquivalence& options) {
-  const std::vector<int> classes = scan_classes(map, hypotheses, r, range, options);
-  std::vector<int> sizes;
-  for (int c : classes) {
-    if (c >= static_cast<int>(sizes.size())) sizes.resize(static_cast<std::size_t>(c) + 1, 0);
-    ++sizes[static_cast<std::size_t>(c)];
-  }
-  return sizes.empty() ? 0.0 : expected_eliminations(sizes);
+  return expected_eliminations(class_sizes(scan_classes(map, hypotheses, r, range, options)));
 }
 
 }  // namespace gridloc

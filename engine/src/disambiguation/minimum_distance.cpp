@@ -77,12 +77,27 @@ std::vector<int> ruled_out(const std::vector<int>& active, const std::vector<int
   return eliminated;
 }
 
+/// The sensing's refit start poses, where it gave them.
+void take_refits(const StopReading& reading, std::vector<Pose2>& hypotheses) {
+  if (reading.refit.empty()) return;
+  if (reading.refit.size() != reading.consistent.size()) {
+    throw Error("disambiguation: the sensing refit " + std::to_string(reading.refit.size()) +
+                " poses for " + std::to_string(reading.consistent.size()) + " hypotheses");
+  }
+  for (std::size_t k = 0; k < reading.consistent.size(); ++k) {
+    hypotheses[static_cast<std::size_t>(reading.consistent[k])] = reading.refit[k];
+  }
+}
+
 /// One stop: overlay, choice, the route there. Empty when no useful point was found.
 std::optional<LocalizationStop> plan_stop(const StopContext& context,
                                           const Eigen::Vector2d& current, Rng& rng) {
-  const std::unique_ptr<StopOverlay> overlay = context.space.overlay(context.active);
+  // OI holds the robot (the start's OI grows as hypotheses go; an engine's refits may move the
+  // start out of it, and then the standard weighted strategy measures from here too).
+  const std::unique_ptr<StopOverlay> overlay = context.space.overlay(context.active, current);
   const std::unique_ptr<OverlayPaths> from_current = overlay->paths_from(current);
-  const bool weighted = context.options.strategy == DistanceStrategy::Weighted;
+  const bool weighted = context.options.strategy == DistanceStrategy::Weighted &&
+                        overlay->oi_contains(Eigen::Vector2d::Zero());
   const std::unique_ptr<OverlayPaths> from_start =
       weighted ? overlay->paths_from(Eigen::Vector2d::Zero()) : nullptr;
   const StopChoice choice =
@@ -115,13 +130,13 @@ StopSensing perfect_sensing(const Area& free_world, const Pose2& true_start,
                                                                 const std::vector<int>& active) {
     const RangeView sensed =
         range_view(free_world, to_world(true_start, stop), true_start.theta, range);
-    std::vector<int> consistent;
+    StopReading reading;
     for (const int index : active) {
       const Pose2& start = hypotheses[static_cast<std::size_t>(index)];
       const RangeView predicted = range_view(free_world, to_world(start, stop), start.theta, range);
-      if (same_view(predicted, sensed, tolerance)) consistent.push_back(index);
+      if (same_view(predicted, sensed, tolerance)) reading.consistent.push_back(index);
     }
-    return consistent;
+    return reading;
   };
 }
 
@@ -140,7 +155,7 @@ MinimumDistancePlan localize_with_minimum_travel(const PlanningSpace& space,
   validate(options);
   if (hypotheses.empty()) throw Error("disambiguation: no hypothesis to tell apart");
   MinimumDistancePlan plan;
-  plan.hypotheses = hypotheses;
+  plan.hypotheses = plan.refit = hypotheses;
   std::vector<int> active(hypotheses.size());
   for (std::size_t i = 0; i < active.size(); ++i) active[i] = static_cast<int>(i);
   Eigen::Vector2d current = Eigen::Vector2d::Zero();
@@ -150,14 +165,16 @@ MinimumDistancePlan localize_with_minimum_travel(const PlanningSpace& space,
       plan.ended = "stop limit";
       break;
     }
-    const std::vector<Pose2> standing = poses_of(hypotheses, active);
+    const std::vector<Pose2> standing = poses_of(plan.refit, active);
     std::optional<LocalizationStop> stop =
         plan_stop(StopContext{space, standing, options}, current, rng);
     if (!stop) {
       plan.ended = "no useful point";
       break;
     }
-    const std::vector<int> remaining = sense(stop->point, stop->route, active);  // step 10
+    const StopReading reading = sense(stop->point, stop->route, active);  // seed 002 step 10
+    const std::vector<int>& remaining = reading.consistent;
+    take_refits(reading, plan.refit);
     stop->eliminated = ruled_out(active, remaining);
     plan.path_length += stop->route_length;
     current = stop->point;

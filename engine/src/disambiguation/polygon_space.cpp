@@ -41,6 +41,7 @@ class PolygonStopOverlay final : public StopOverlay {
     return sample_lattice({overlay_.oi}, step);
   }
   double oi_size() const override { return area_size(overlay_.oi); }
+  bool oi_contains(const Eigen::Vector2d& p) const override { return covers(overlay_.oi, p); }
   std::unique_ptr<OverlayPaths> paths_from(const Eigen::Vector2d& source) const override {
     return std::make_unique<GeodesicPaths>(overlay_.oi, source);
   }
@@ -76,15 +77,16 @@ PolygonPlanningSpace::PolygonPlanningSpace(Area free_world, const PolygonSpaceOp
   validate(options_);
 }
 
-std::unique_ptr<StopOverlay> PolygonPlanningSpace::overlay(
-    const std::vector<Pose2>& hypotheses) const {
-  return std::make_unique<PolygonStopOverlay>(make_overlay(free_world_, hypotheses), options_);
+std::unique_ptr<StopOverlay> PolygonPlanningSpace::overlay(const std::vector<Pose2>& hypotheses,
+                                                           const Eigen::Vector2d& anchor) const {
+  return std::make_unique<PolygonStopOverlay>(make_overlay(free_world_, hypotheses, anchor),
+                                              options_);
 }
 
-double PolygonPlanningSpace::info(const std::vector<Pose2>& hypotheses,
-                                  const Eigen::Vector2d& r) const {
-  const std::vector<RangeView> views = predicted_views(free_world_, hypotheses, r, options_.range);
-  return expected_eliminations(class_sizes(equivalence_classes(views, options_.tolerance)));
+std::vector<int> PolygonPlanningSpace::classes(const std::vector<Pose2>& hypotheses,
+                                               const Eigen::Vector2d& r) const {
+  return equivalence_classes(predicted_views(free_world_, hypotheses, r, options_.range),
+                             options_.tolerance);
 }
 
 std::vector<RangeView> predicted_views(const Area& free_world, const std::vector<Pose2>& hypotheses,

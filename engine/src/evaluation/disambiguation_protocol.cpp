@@ -23,11 +23,11 @@ struct Environment {
   Area free_world;
   std::vector<Pose2> starts;
   std::vector<std::vector<std::vector<Pose2>>> hypotheses;  ///< [range][start]
-  std::vector<std::vector<double>> bounds;                  ///< [range][start]
+  std::vector<std::vector<TravelBound>> bounds;             ///< [range][start]
 };
 
 struct TrialOutcome {
-  double path_length = 0.0, bound = 0.0, ms = 0.0;
+  double path_length = 0.0, bound = 0.0, pairwise = 0.0, ms = 0.0;
   int stops = 0, hypotheses = 0;
   bool resolved = false;
 };
@@ -46,13 +46,13 @@ Environment prepare_environment(int seed, const DisambiguationProtocolOptions& o
                                         options.start_attempts);
   for (const double range : options.ranges) {
     std::vector<std::vector<Pose2>> per_start;
-    std::vector<double> bounds;
+    std::vector<TravelBound> bounds;
     for (const Pose2& start : environment.starts) {
       per_start.push_back(start_hypotheses(environment.free_world, start, {range, false, 1e-6}));
       const PolygonPlanningSpace space(environment.free_world, {range, 1e-6, 16});
-      bounds.push_back(travel_lower_bound(space, per_start.back(), 0.0,
-                                          std::isfinite(range) ? range / 4.0 : kUnlimitedRange)
-                           .distance);
+      bounds.push_back(travel_lower_bound(space, per_start.back(),
+                                          find_pose(per_start.back(), start), 0.0,
+                                          std::isfinite(range) ? range / 4.0 : kUnlimitedRange));
     }
     environment.hypotheses.push_back(std::move(per_start));
     environment.bounds.push_back(std::move(bounds));
@@ -72,7 +72,8 @@ TrialOutcome run_trial(const Environment& environment, std::size_t range_index, 
   const auto end = std::chrono::steady_clock::now();
   TrialOutcome outcome;
   outcome.path_length = plan.path_length;
-  outcome.bound = environment.bounds[range_index][start];
+  outcome.bound = environment.bounds[range_index][start].distance;
+  outcome.pairwise = environment.bounds[range_index][start].pairwise;
   outcome.ms = std::chrono::duration<double, std::milli>(end - begin).count();
   outcome.stops = static_cast<int>(plan.stops.size());
   outcome.hypotheses = static_cast<int>(hypotheses.size());
@@ -95,7 +96,8 @@ double mean(const std::vector<double>& values) {
 
 DisambiguationConfiguration summarize(DisambiguationConfiguration row,
                                       const std::vector<TrialOutcome>& outcomes) {
-  std::vector<double> lengths, bounds, ratios, ms, stop_ms, stops, hypotheses;
+  std::vector<double> lengths, bounds, pairwise, ratios, pairwise_ratios, ms, stop_ms, stops,
+      hypotheses;
   int resolved = 0;
   for (const TrialOutcome& outcome : outcomes) {
     lengths.push_back(outcome.path_length);
@@ -106,6 +108,9 @@ DisambiguationConfiguration summarize(DisambiguationConfiguration row,
     if (std::isfinite(outcome.bound)) bounds.push_back(outcome.bound);
     if (std::isfinite(outcome.bound) && outcome.bound > 0.0)
       ratios.push_back(outcome.path_length / outcome.bound);
+    if (std::isfinite(outcome.pairwise)) pairwise.push_back(outcome.pairwise);
+    if (std::isfinite(outcome.pairwise) && outcome.pairwise > 0.0)
+      pairwise_ratios.push_back(outcome.path_length / outcome.pairwise);
     resolved += outcome.resolved ? 1 : 0;
   }
   row.trials = static_cast<int>(outcomes.size());
@@ -114,6 +119,8 @@ DisambiguationConfiguration summarize(DisambiguationConfiguration row,
   row.mean_stops = mean(stops);
   row.mean_lower_bound = mean(bounds);
   row.mean_bound_ratio = mean(ratios);
+  row.mean_pairwise_bound = mean(pairwise);
+  row.mean_pairwise_ratio = mean(pairwise_ratios);
   row.mean_hypotheses = mean(hypotheses);
   row.median_ms = median(ms);
   row.mean_stop_ms = mean(stop_ms);

@@ -49,7 +49,9 @@ struct GridOverlay {
 /// cells (128 directions, split until neighbouring rays end at most a cell apart), marking
 /// each crossed cell whose centre is within `range` (m; +inf: unlimited) of the ray's start.
 /// Throws gridloc::Error for an empty map or hypothesis list, a pose or anchor that is not
-/// finite, a range that is not positive, or an anchor whose cell is not free in every map.
+/// finite, a range that is not positive, or an anchor whose cell is not free in every map and
+/// has no such cell within 3 cells (then the nearest is OI's seed: an estimate a hair inside a
+/// wall).
 GridOverlay make_grid_overlay(const OccupancyMap& map, const std::vector<Pose2>& hypotheses,
                               double range,
                               const Eigen::Vector2d& anchor = Eigen::Vector2d::Zero());

@@ -33,12 +33,19 @@ struct MinimumDistanceOptions {
 /// Checks the options; throws gridloc::Error naming the field.
 void validate(const MinimumDistanceOptions& options);
 
-/// What the robot learns at a stop: of the `active` hypotheses (indices), those consistent
-/// with what it senses at start-frame point `stop`, having come along `route` (start frame,
-/// from the previous stop).
-using StopSensing = std::function<std::vector<int>(const Eigen::Vector2d& stop,
-                                                   const std::vector<Eigen::Vector2d>& route,
-                                                   const std::vector<int>& active)>;
+/// What the robot learns at a stop.
+struct StopReading {
+  std::vector<int> consistent;  ///< the hypotheses (indices) still standing
+  /// Empty, or per consistent hypothesis its start pose refit so that the robot stands where
+  /// the sensing put it (an engine's windowed estimate): odometry error stops growing there.
+  std::vector<Pose2> refit;
+};
+
+/// What the robot learns at start-frame point `stop` of the `active` hypotheses (indices),
+/// having come along `route` (start frame, from the previous stop).
+using StopSensing = std::function<StopReading(const Eigen::Vector2d& stop,
+                                              const std::vector<Eigen::Vector2d>& route,
+                                              const std::vector<int>& active)>;
 
 /// Seed 002's perfect sensor on a polygon map: the robot truly started at `true_start`; a
 /// hypothesis survives when its predicted view at the stop is the same as the one sensed.
@@ -61,6 +68,7 @@ struct LocalizationStop {
 
 struct MinimumDistancePlan {
   std::vector<Pose2> hypotheses;  ///< as given
+  std::vector<Pose2> refit;       ///< the same after every StopReading::refit
   std::vector<LocalizationStop> stops;
   std::vector<int> remaining;  ///< the hypotheses still standing at the end (indices)
   double path_length = 0.0;    ///< the sum of the routes

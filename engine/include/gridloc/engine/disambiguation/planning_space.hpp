@@ -36,6 +36,8 @@ class StopOverlay {
   virtual std::vector<Eigen::Vector2d> lattice(double step) const = 0;
   /// OI's area (square map units).
   virtual double oi_size() const = 0;
+  /// Whether start-frame point p lies in OI.
+  virtual bool oi_contains(const Eigen::Vector2d& p) const = 0;
   /// Shortest paths inside OI from `source` (a point of OI).
   virtual std::unique_ptr<OverlayPaths> paths_from(const Eigen::Vector2d& source) const = 0;
 };
@@ -43,11 +45,18 @@ class StopOverlay {
 class PlanningSpace {
  public:
   virtual ~PlanningSpace() = default;
-  /// The overlay of `hypotheses` (start poses in the world) around the start-frame origin.
-  virtual std::unique_ptr<StopOverlay> overlay(const std::vector<Pose2>& hypotheses) const = 0;
-  /// Seed 002's info at start-frame point `r`: the expected number of `hypotheses` that
-  /// sensing there rules out.
-  virtual double info(const std::vector<Pose2>& hypotheses, const Eigen::Vector2d& r) const = 0;
+  /// The overlay of `hypotheses` (start poses in the world), OI the component holding
+  /// start-frame point `anchor` (the start, or where the robot stands now).
+  virtual std::unique_ptr<StopOverlay> overlay(
+      const std::vector<Pose2>& hypotheses,
+      const Eigen::Vector2d& anchor = Eigen::Vector2d::Zero()) const = 0;
+  /// The equivalence class of each hypothesis at start-frame point `r` (0, 1, ... in order of
+  /// first appearance): hypotheses whose predicted sensing there is the same share a class.
+  virtual std::vector<int> classes(const std::vector<Pose2>& hypotheses,
+                                   const Eigen::Vector2d& r) const = 0;
+  /// Seed 002's info at `r`: the expected number of `hypotheses` that sensing there rules
+  /// out, from the sizes of classes().
+  double info(const std::vector<Pose2>& hypotheses, const Eigen::Vector2d& r) const;
 };
 
 }  // namespace gridloc

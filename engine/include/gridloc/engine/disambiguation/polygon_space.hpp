@@ -24,8 +24,10 @@ class PolygonPlanningSpace final : public PlanningSpace {
   /// Throws gridloc::Error for bad options.
   PolygonPlanningSpace(Area free_world, const PolygonSpaceOptions& options = {});
 
-  std::unique_ptr<StopOverlay> overlay(const std::vector<Pose2>& hypotheses) const override;
-  double info(const std::vector<Pose2>& hypotheses, const Eigen::Vector2d& r) const override;
+  std::unique_ptr<StopOverlay> overlay(const std::vector<Pose2>& hypotheses,
+                                       const Eigen::Vector2d& anchor) const override;
+  std::vector<int> classes(const std::vector<Pose2>& hypotheses,
+                           const Eigen::Vector2d& r) const override;
 
   const Area& free_world() const { return free_world_; }
   const PolygonSpaceOptions& options() const { return options_; }

@@ -1,14 +1,16 @@
 #pragma once
-/// The yardstick beside every seed 002 figure: no localizing path can be shorter than the way
-/// (inside OI) from the start to the nearest point where sensing rules out at least one
-/// hypothesis. With two hypotheses any such point resolves them, so the bound is then the
-/// optimum itself. Both are taken on a fine lattice over OI.
+/// The yardsticks beside every seed 002 figure, taken on a fine lattice over OI:
+/// - no localizing path is shorter than the way (inside OI) from the start to the nearest
+///   point where sensing rules out at least one hypothesis (with two hypotheses any such
+///   point resolves them: the bound is then the optimum itself);
+/// - when the truth is known (simulation), none is shorter than the way to the farthest of
+///   the nearest points that tell each wrong hypothesis from the truth (each must be ruled
+///   out somewhere): a tighter bound for three hypotheses and more.
 #include <Eigen/Core>
 #include <limits>
 #include <vector>
 
 #include "gridloc/engine/disambiguation/planning_space.hpp"
-#include "gridloc/grids/geometry.hpp"
 
 namespace gridloc {
 
@@ -17,16 +19,21 @@ struct TravelBound {
   /// +infinity when no lattice point is informative.
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< that point (start frame)
-  double step = 0.0;                                ///< the lattice spacing used
-  int points = 0;                                   ///< lattice points inside OI
-  bool optimal = false;  ///< two hypotheses: the bound is the shortest localizing path
+  /// With the truth known: the largest, over the wrong hypotheses, of the way to the nearest
+  /// lattice point where that hypothesis and the truth differ (+infinity when one never does;
+  /// NaN without the truth).
+  double pairwise = std::numeric_limits<double>::quiet_NaN();
+  double step = 0.0;     ///< the lattice spacing used
+  int points = 0;        ///< lattice points inside OI
+  bool optimal = false;  ///< two hypotheses: `distance` is the shortest localizing path
 };
 
-/// The bound for the hypotheses (at least two) on a lattice of spacing `step` (0: about 4000
-/// points over OI, and at most `max_step`: a quarter of a limited range, say). Throws
-/// gridloc::Error for fewer than two hypotheses or a bad step.
+/// The bounds for the hypotheses (at least two) on a lattice of spacing `step` (0: about
+/// 4000 points over OI, and at most `max_step`: a quarter of a limited range, say);
+/// `truth` the index of the true hypothesis, or -1. Throws gridloc::Error for fewer than two
+/// hypotheses, a bad step or a truth index out of range.
 TravelBound travel_lower_bound(const PlanningSpace& space, const std::vector<Pose2>& hypotheses,
-                               double step = 0.0,
+                               int truth = -1, double step = 0.0,
                                double max_step = std::numeric_limits<double>::infinity());
 
 }  // namespace gridloc

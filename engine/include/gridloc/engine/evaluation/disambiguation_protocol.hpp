@@ -53,6 +53,9 @@ struct DisambiguationConfiguration {
   double mean_lower_bound = 0.0;  ///< over the same trials (finite bounds)
   /// The mean over trials of path length / lower bound (trials with a positive bound).
   double mean_bound_ratio = 0.0;
+  /// The same for travel_lower_bound()'s pairwise bound (the truth is known here).
+  double mean_pairwise_bound = 0.0;
+  double mean_pairwise_ratio = 0.0;
   double mean_hypotheses = 0.0;
   double median_ms = 0.0;     ///< planning and sensing time per trial
   double mean_stop_ms = 0.0;  ///< the same per stop (trials with stops)
