@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "test_support.hpp"
 
@@ -159,6 +160,111 @@ TEST(Overlay, BadInputThrows) {
         make_overlay(Area{{{0, 0}, {1, 0}}, {}}, {{0, 0, 0}});
       },
       {"fewer than 3"});
+}
+
+// ---- brute force: rooms of unit cells, hypotheses at cell centres ----
+
+/// A room of unit columns: column c is [c, c+1] x [low_c, high_c], neighbours overlapping.
+struct ColumnRoom {
+  std::vector<int> low, high;
+  bool free_cell(int c, int r) const {  // the cell [c, c+1] x [r, r+1]
+    return c >= 0 && c < static_cast<int>(low.size()) && r >= low[c] && r < high[c];
+  }
+  Area area() const {
+    Polygon ring;
+    auto add = [&](double x, double y) {
+      if (ring.empty() || ring.back() != Eigen::Vector2d(x, y)) ring.emplace_back(x, y);
+    };
+    for (std::size_t i = 0; i < low.size(); ++i) add(i, low[i]), add(i + 1.0, low[i]);
+    for (std::size_t i = high.size(); i-- > 0;) add(i + 1.0, high[i]), add(i, high[i]);
+    return Area{ring, {}};
+  }
+};
+
+ColumnRoom random_column_room(std::mt19937& rng, int columns) {
+  std::uniform_int_distribution<int> pick(0, 6);
+  ColumnRoom room;
+  while (static_cast<int>(room.low.size()) < columns) {
+    int a = pick(rng), b = pick(rng);
+    if (a == b) continue;
+    if (a > b) std::swap(a, b);
+    if (!room.low.empty() && (a >= room.high.back() || b <= room.low.back())) continue;
+    room.low.push_back(a);
+    room.high.push_back(b);
+  }
+  return room;
+}
+
+/// What the cells say: under hypothesis (c + 0.5, r + 0.5) the start-frame cell centred at
+/// (x, y) is world cell (x + c, y + r). OI's cells flood from the origin's cell over shared
+/// sides; a unit side of OI is internal when the cell beyond is free in some map.
+struct CellOverlay {
+  double intersection_size = 0, oi_size = 0, internal_length = 0, silhouette_length = 0;
+};
+
+CellOverlay cell_overlay(const ColumnRoom& room, const std::vector<Cell>& starts) {
+  auto in_map = [&](const Cell& start, int x, int y) {
+    return room.free_cell(x + start.ix, y + start.iy);
+  };
+  auto in_all = [&](int x, int y) {
+    return std::all_of(starts.begin(), starts.end(),
+                       [&](const Cell& s) { return in_map(s, x, y); });
+  };
+  auto in_some = [&](int x, int y) {
+    return std::any_of(starts.begin(), starts.end(),
+                       [&](const Cell& s) { return in_map(s, x, y); });
+  };
+  CellOverlay result;
+  const int span = 12;
+  for (int x = -span; x <= span; ++x) {
+    for (int y = -span; y <= span; ++y) result.intersection_size += in_all(x, y) ? 1 : 0;
+  }
+  std::set<std::pair<int, int>> oi{{0, 0}};
+  std::vector<std::pair<int, int>> stack{{0, 0}};
+  const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+  while (!stack.empty()) {
+    const auto [x, y] = stack.back();
+    stack.pop_back();
+    for (int d = 0; d < 4; ++d) {
+      const std::pair<int, int> next{x + dx[d], y + dy[d]};
+      if (in_all(next.first, next.second) && oi.insert(next).second) stack.push_back(next);
+    }
+  }
+  result.oi_size = static_cast<double>(oi.size());
+  for (const auto& [x, y] : oi) {
+    for (int d = 0; d < 4; ++d) {
+      if (oi.count({x + dx[d], y + dy[d]})) continue;
+      (in_some(x + dx[d], y + dy[d]) ? result.internal_length : result.silhouette_length) += 1;
+    }
+  }
+  return result;
+}
+
+TEST(Overlay, MatchesTheCellsOnRandomRooms) {
+  std::mt19937 rng(2002);
+  for (int trial = 0; trial < 30; ++trial) {
+    const ColumnRoom room = random_column_room(rng, 6);
+    std::vector<Cell> free_cells;
+    for (int c = 0; c < 6; ++c) {
+      for (int r = 0; r < 6; ++r) {
+        if (room.free_cell(c, r)) free_cells.push_back({c, r});
+      }
+    }
+    std::vector<Cell> starts;
+    std::vector<Pose2> hypotheses;
+    const int k = 2 + trial % 4;
+    for (int i = 0; i < k; ++i) {
+      starts.push_back(free_cells[rng() % free_cells.size()]);
+      hypotheses.push_back({starts.back().ix + 0.5, starts.back().iy + 0.5, 0.0});
+    }
+    const Overlay overlay = make_overlay(room.area(), hypotheses);
+    const CellOverlay expected = cell_overlay(room, starts);
+    EXPECT_NEAR(region_size(overlay.intersection), expected.intersection_size, 1e-9) << trial;
+    EXPECT_NEAR(area_size(overlay.oi), expected.oi_size, 1e-9) << trial;
+    EXPECT_NEAR(total_length(overlay.internal_edges), expected.internal_length, 1e-9) << trial;
+    EXPECT_NEAR(total_length(overlay.silhouette_edges), expected.silhouette_length, 1e-9) << trial;
+    expect_pieces_classified(overlay);
+  }
 }
 
 /// A comb: a corridor [0, 2 teeth] x [0, 1] with `teeth` rooms [2i, 2i + 1] x [1, 3] above
