@@ -157,6 +157,13 @@ TEST(Overlay, BadInputThrows) {
   test::expect_error([&] { make_overlay(room, {}); }, {"no hypotheses"});
   test::expect_error(
       [&] {
+        make_overlay(room, {{1, 1, 0}, {NAN, 1, 0}});
+      },
+      {"hypothesis 1", "not finite"});
+  const Area bow_tie{{{0, 0}, {2, 2}, {2, 0}, {0, 2}}, {}};
+  test::expect_error([&] { make_overlay(bow_tie, {{1, 1, 0}}); }, {"not a valid polygon"});
+  test::expect_error(
+      [&] {
         make_overlay(Area{{{0, 0}, {1, 0}}, {}}, {{0, 0, 0}});
       },
       {"fewer than 3"});

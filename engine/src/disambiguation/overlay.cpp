@@ -21,7 +21,7 @@ using EdgeTree = bgi::rtree<std::pair<bgw::Box, std::size_t>, bgi::rstar<16>>;
 constexpr double kMinPieceLength = 1e-9;  ///< sub-pieces shorter than this are dropped
 constexpr double kProbeOffset = 1e-7;     ///< of the map's scale, the probe beyond an edge
 
-/// One map of the overlay in Boost form, with its envelope and its edges.
+/// One map of the overlay in Boost form, with its envelope (a cheap first test).
 struct BoostMap {
   bgw::BoostPolygon polygon;
   bgw::Box envelope;
@@ -29,6 +29,16 @@ struct BoostMap {
 
 std::string point_text(const Eigen::Vector2d& p) {
   return "(" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ")";
+}
+
+void check_hypotheses(const std::vector<Pose2>& hypotheses) {
+  if (hypotheses.empty()) throw Error("make_overlay: no hypotheses");
+  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
+    const Pose2& h = hypotheses[i];
+    if (!std::isfinite(h.x) || !std::isfinite(h.y) || !std::isfinite(h.theta)) {
+      throw Error("make_overlay: hypothesis " + std::to_string(i) + " is not finite");
+    }
+  }
 }
 
 void check_free_world(const Area& free_world) {
@@ -166,7 +176,7 @@ void split_oi_boundary(const std::vector<BoostMap>& maps, double probe_offset, O
 
 Overlay make_overlay(const Area& free_world, const std::vector<Pose2>& hypotheses,
                      const Eigen::Vector2d& anchor) {
-  if (hypotheses.empty()) throw Error("make_overlay: no hypotheses");
+  check_hypotheses(hypotheses);
   check_free_world(free_world);
   Overlay overlay;
   overlay.hypotheses = hypotheses;

@@ -12,12 +12,19 @@
 namespace gridloc {
 
 /// Whether the closed segment a-b lies in the closed area (it may run along a wall or touch
-/// a vertex, never cross into a hole or out of the outer ring).
+/// a vertex, never cross into a hole or out of the outer ring): no edge crosses it properly
+/// and, split at every area vertex on it, each piece's midpoint is in the closed area.
+/// Collinearity is judged with a relative tolerance of 1e-12 (|sin| of the angle). O(n) for
+/// n vertices; throws gridloc::Error when the outer ring has fewer than 3 vertices.
 bool segment_inside(const Area& area, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 
 /// Distances from one source to any point of an area: built once per source (Dijkstra over
 /// the visibility graph of the reflex vertices and the source), then each query tests which
-/// reached vertices see the target.
+/// reached vertices see the target. Only links a shortest path can use are kept: tangent at
+/// their reflex vertices (the path wraps around the corner) and through no other reflex
+/// vertex (the path then bends there, as long). A query visits the reached vertices by
+/// increasing distance and stops once none can beat the best so far. Copies share the
+/// immutable index; const queries may run concurrently.
 class GeodesicDistance {
  public:
   /// `source` must lie in the closed area; throws gridloc::Error otherwise.
