@@ -132,6 +132,27 @@ TEST(Overlay, RotatedHypothesesSeeTheRoomTurned) {
   expect_pieces_classified(overlay);
 }
 
+TEST(Overlay, AllHypothesesTurnedAlikeTurnTheOverlayOnly) {
+  // The same pair of starts, the robot heading elsewhere: the overlay turns with it (rotated
+  // coordinates are inexact: cos(pi / 2) != 0 in doubles).
+  const Area l_room{{{0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}},
+                    {clockwise(rectangle(0.5, 0.5, 1.5, 1.5))}};
+  const Overlay plain = make_overlay(l_room, {{1, 1, 0}, {2, 1, 0}}, {0, 0.7});
+  for (const double theta : {std::acos(0.0), 2 * std::acos(0.0), 0.3, -1.234}) {
+    const Overlay turned =
+        make_overlay(l_room, {{1, 1, theta}, {2, 1, theta}},
+                     to_start_frame(Pose2{0, 0, theta}, Eigen::Vector2d(0, 0.7)));
+    EXPECT_NEAR(region_size(turned.intersection), region_size(plain.intersection), 1e-9);
+    EXPECT_NEAR(area_size(turned.oi), area_size(plain.oi), 1e-9) << theta;
+    EXPECT_EQ(turned.oi.holes.size(), plain.oi.holes.size()) << theta;
+    EXPECT_NEAR(total_length(turned.internal_edges), total_length(plain.internal_edges), 1e-9)
+        << theta;
+    EXPECT_NEAR(total_length(turned.silhouette_edges), total_length(plain.silhouette_edges), 1e-9)
+        << theta;
+    expect_pieces_classified(turned);
+  }
+}
+
 TEST(Overlay, TheAnchorPicksItsComponent) {
   // A U (notch [1,2]x[1,3]) and its copy raised by 2: they overlap in two 1x1 squares.
   const Area u_room{{{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}}, {}};
