@@ -295,6 +295,50 @@ TEST(Overlay, MatchesTheCellsOnRandomRooms) {
   }
 }
 
+/// Points well clear of every map edge: in the intersection exactly when in every map.
+/// Returns how many sampled points were in every map.
+int expect_intersection_by_sampling(const Overlay& overlay, std::mt19937& rng) {
+  std::vector<Segment> edges;
+  for (const Area& map : overlay.maps) {
+    for (const Segment& edge : area_edges(map)) edges.push_back(edge);
+  }
+  std::uniform_real_distribution<double> coordinate(-8, 8);  // any start sees the room here
+  int checked = 0;
+  for (int n = 0; n < 400; ++n) {
+    const Eigen::Vector2d p(coordinate(rng), coordinate(rng));
+    double clearance = 1e9;
+    for (const Segment& edge : edges) clearance = std::min(clearance, distance_to_segment(edge, p));
+    if (clearance < 1e-6) continue;
+    bool in_all = true;
+    for (const Area& map : overlay.maps) in_all = in_all && covers(map, p);
+    EXPECT_EQ(covers(overlay.intersection, p), in_all) << p.transpose();
+    checked += in_all ? 1 : 0;
+  }
+  EXPECT_TRUE(covers(overlay.oi, Eigen::Vector2d::Zero()));
+  return checked;
+}
+
+TEST(Overlay, TurnedHypothesesOnRandomRooms) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> heading(-3.14159, 3.14159);
+  int inside_all = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const ColumnRoom room = random_column_room(rng, 6);
+    const Area map = room.area();
+    std::vector<Pose2> hypotheses;
+    const int k = 2 + trial % 3;
+    for (int i = 0; i < k; ++i) {
+      const int c = static_cast<int>(rng() % 6);
+      const double y = room.low[c] + 0.5;  // a cell centre inside column c
+      hypotheses.push_back({c + 0.5, y, heading(rng)});
+    }
+    const Overlay overlay = make_overlay(map, hypotheses);
+    inside_all += expect_intersection_by_sampling(overlay, rng);
+    expect_pieces_classified(overlay);
+  }
+  EXPECT_GT(inside_all, 40);  // the samples do reach the intersections (79 of 8000)
+}
+
 /// A comb: a corridor [0, 2 teeth] x [0, 1] with `teeth` rooms [2i, 2i + 1] x [1, 3] above
 /// it: 4 teeth + 2 vertices, self-similar under shifts by 2.
 Area comb(int teeth) {
