@@ -63,6 +63,24 @@ void expect_pieces_classified(const Overlay& overlay) {
               oi_perimeter(overlay.oi), 1e-9);
 }
 
+TEST(Overlay, TheIssuesCaseStartsOneApartInAFourByThreeRoom) {
+  // Starts (0, 0) and (1, 0) in the room [0,4]x[0,3]: the copies [0,4]x[0,3] and [-1,3]x[0,3]
+  // overlap in [0,3]x[0,3]; the anchor (the start) is OI's corner.
+  const Overlay overlay = make_overlay(Area{rectangle(0, 0, 4, 3), {}}, {{0, 0, 0}, {1, 0, 0}});
+  ASSERT_EQ(overlay.oi.outer.size(), 4u);
+  for (const Eigen::Vector2d& corner : rectangle(0, 0, 3, 3)) {
+    EXPECT_NE(std::find(overlay.oi.outer.begin(), overlay.oi.outer.end(), corner),
+              overlay.oi.outer.end())
+        << corner.transpose();
+  }
+  EXPECT_GT(signed_area2(overlay.oi.outer), 0.0);  // counter-clockwise
+  EXPECT_NEAR(area_size(overlay.oi), 9.0, 1e-12);
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {0, 1.5}));  // the second copy goes on
+  EXPECT_TRUE(on_some_piece(overlay.internal_edges, {3, 1.5}));  // the first copy goes on
+  EXPECT_NEAR(total_length(overlay.internal_edges), 6.0, 1e-12);
+  EXPECT_NEAR(total_length(overlay.silhouette_edges), 6.0, 1e-12);
+}
+
 TEST(Overlay, TwoShiftedRectangularRoomsOverlapInASquare) {
   const Area room{rectangle(0, 0, 4, 3), {}};
   const Overlay overlay = make_overlay(room, {{1, 1, 0}, {2, 1, 0}});
@@ -109,6 +127,7 @@ TEST(Overlay, AnObstacleGivesOIBothCopiesHoles) {
   const Area room{rectangle(0, 0, 8, 4), {clockwise(rectangle(3, 1, 4, 2))}};
   const Overlay overlay = make_overlay(room, {{1, 1, 0}, {3, 1, 0}});
   ASSERT_EQ(overlay.oi.holes.size(), 2u);  // [2,3]x[0,1] and [0,1]x[0,1]
+  for (const Polygon& hole : overlay.oi.holes) EXPECT_LT(signed_area2(hole), 0.0);  // clockwise
   EXPECT_NEAR(area_size(overlay.oi), 6.0 * 4.0 - 2.0, 1e-12);
   EXPECT_FALSE(covers(overlay.oi, {0.5, 0.5}));
   EXPECT_FALSE(covers(overlay.oi, {2.5, 0.5}));
