@@ -5,13 +5,10 @@
 #include <Eigen/Core>
 // Boost 1.74 rescales coordinates to integers in set operations by default, which moves
 // computed crossings by about 1e-7 of the extent (an L room turned by 0.3 rad lost 4e-7 of
-// its area); later Boost versions turn it off by default, as this does. It must be defined
-// wherever Boost.Geometry is included in gridloc: include Boost.Geometry through this file.
-#if defined(BOOST_GEOMETRY_CORE_CONFIG_HPP) && !defined(BOOST_GEOMETRY_NO_ROBUSTNESS)
-#error "include boost_geometry.hpp before any other Boost.Geometry header"
-#endif
+// its area); engine/CMakeLists.txt turns that off for every engine source, as later Boost
+// versions do by default.
 #ifndef BOOST_GEOMETRY_NO_ROBUSTNESS
-#define BOOST_GEOMETRY_NO_ROBUSTNESS
+#error "build with BOOST_GEOMETRY_NO_ROBUSTNESS, as engine/CMakeLists.txt does"
 #endif
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/box.hpp>
