@@ -66,15 +66,15 @@ nlohmann::json result_json(const DisambiguationProtocolResult& result) {
                     {"points", row.points},
                     {"range", std::isfinite(row.range) ? nlohmann::json(row.range) : nullptr},
                     {"trials", row.trials},
-                    {"mean_path_length", row.mean_path_length},
-                    {"resolved_rate", row.resolved_rate},
-                    {"mean_stops", row.mean_stops},
+                    {"mean_path_length", number_or_null(row.mean_path_length)},
+                    {"resolved_rate", number_or_null(row.resolved_rate)},
+                    {"mean_stops", number_or_null(row.mean_stops)},
                     {"mean_lower_bound", row.mean_lower_bound},
                     {"mean_bound_ratio", row.mean_bound_ratio},
                     {"mean_pairwise_bound", row.mean_pairwise_bound},
                     {"mean_pairwise_ratio", row.mean_pairwise_ratio},
-                    {"mean_hypotheses", row.mean_hypotheses},
-                    {"median_ms", row.median_ms},
+                    {"mean_hypotheses", number_or_null(row.mean_hypotheses)},
+                    {"median_ms", number_or_null(row.median_ms)},
                     {"mean_stop_ms", row.mean_stop_ms}});
   }
   return {{"protocol", "disambiguation"}, {"trials", result.trials}, {"configurations", rows}};
@@ -88,11 +88,13 @@ void print_table(const DisambiguationEvalArgs& args, const DisambiguationProtoco
               "points", "range", "path", "resolved", "stops", "bound", "ratio", "pairwise", "ratio",
               "hyps", "ms/stop");
   for (const DisambiguationConfiguration& row : result.configurations) {
-    const std::string range = std::isfinite(row.range) ? std::to_string(row.range) : "inf";
-    std::printf("%-4s %-9s %6d %6.6s %9.3f %7.1f%% %6.2f %9.3f %7.2f %6.1f %9.2f\n",
-                algorithm_name(row.algorithm), strategy_name(row.strategy), row.points,
-                range.c_str(), row.mean_path_length, 100.0 * row.resolved_rate, row.mean_stops,
-                row.mean_lower_bound, row.mean_bound_ratio, row.mean_hypotheses, row.mean_stop_ms);
+    char range[16] = "inf";
+    if (std::isfinite(row.range)) std::snprintf(range, sizeof range, "%g", row.range);
+    std::printf("%-4s %-9s %6d %6s %9.3f %7.1f%% %6.2f %8.3f %7.2f %8.3f %7.2f %6.1f %9.2f\n",
+                algorithm_name(row.algorithm), strategy_name(row.strategy), row.points, range,
+                row.mean_path_length, 100.0 * row.resolved_rate, row.mean_stops,
+                row.mean_lower_bound, row.mean_bound_ratio, row.mean_pairwise_bound,
+                row.mean_pairwise_ratio, row.mean_hypotheses, row.mean_stop_ms);
   }
 }
 
@@ -134,22 +136,23 @@ nlohmann::json engine_loop_json(const DisambiguationEvalArgs& args,
                                 const std::vector<EngineDisambiguationResult>& results) {
   nlohmann::json rows = nlohmann::json::array();
   for (const EngineDisambiguationResult& row : results) {
-    rows.push_back({{"map", row.map},
-                    {"algorithm", algorithm_name(options.planner.algorithm)},
-                    {"strategy", strategy_name(options.planner.strategy)},
-                    {"points", options.planner.points},
-                    {"trials", row.trials},
-                    {"drawn", row.drawn},
-                    {"truth_seeded", row.truth_seeded},
-                    {"true_survived_rate", row.true_survived_rate},
-                    {"wrong_answers", row.wrong_answers},
-                    {"resolved_rate", row.resolved_rate},
-                    {"mean_hypotheses", row.mean_hypotheses},
-                    {"mean_path_length", row.mean_path_length},
-                    {"mean_noise_free_path_length", row.mean_noise_free_path_length},
-                    {"noise_free_resolved_rate", row.noise_free_resolved_rate},
-                    {"mean_stops", row.mean_stops},
-                    {"median_ms", row.median_ms}});
+    rows.push_back(
+        {{"map", row.map},
+         {"algorithm", algorithm_name(options.planner.algorithm)},
+         {"strategy", strategy_name(options.planner.strategy)},
+         {"points", options.planner.points},
+         {"trials", row.trials},
+         {"drawn", row.drawn},
+         {"truth_seeded", row.truth_seeded},
+         {"true_survived_rate", number_or_null(row.true_survived_rate)},
+         {"wrong_answers", row.wrong_answers},
+         {"resolved_rate", number_or_null(row.resolved_rate)},
+         {"mean_hypotheses", number_or_null(row.mean_hypotheses)},
+         {"mean_path_length", number_or_null(row.mean_path_length)},
+         {"mean_noise_free_path_length", number_or_null(row.mean_noise_free_path_length)},
+         {"noise_free_resolved_rate", number_or_null(row.noise_free_resolved_rate)},
+         {"mean_stops", number_or_null(row.mean_stops)},
+         {"median_ms", number_or_null(row.median_ms)}});
   }
   return {{"protocol", "disambiguation"}, {"sensor", args.sensor}, {"configurations", rows}};
 }

@@ -50,6 +50,7 @@ double oi_perimeter(const Area& oi) {
 void expect_pieces_classified(const Overlay& overlay) {
   for (int internal = 0; internal < 2; ++internal) {
     for (const Segment& piece : internal ? overlay.internal_edges : overlay.silhouette_edges) {
+      if ((piece.b - piece.a).norm() < 1e-6) continue;  // a sliver of Boost's rescaling
       const Eigen::Vector2d d = (piece.b - piece.a).normalized();
       const Eigen::Vector2d probe =
           0.5 * (piece.a + piece.b) + 1e-4 * Eigen::Vector2d(d.y(), -d.x());
@@ -60,7 +61,7 @@ void expect_pieces_classified(const Overlay& overlay) {
     }
   }
   EXPECT_NEAR(total_length(overlay.internal_edges) + total_length(overlay.silhouette_edges),
-              oi_perimeter(overlay.oi), 1e-9);
+              oi_perimeter(overlay.oi), 1e-6);
 }
 
 TEST(Overlay, TheIssuesCaseStartsOneApartInAFourByThreeRoom) {
@@ -153,20 +154,22 @@ TEST(Overlay, RotatedHypothesesSeeTheRoomTurned) {
 
 TEST(Overlay, AllHypothesesTurnedAlikeTurnTheOverlayOnly) {
   // The same pair of starts, the robot heading elsewhere: the overlay turns with it (rotated
-  // coordinates are inexact: cos(pi / 2) != 0 in doubles).
+  // coordinates are inexact: cos(pi / 2) != 0 in doubles; Boost 1.74's rescaling to an integer
+  // grid moves crossings by about 1e-7 of the extent: boost_geometry.hpp).
   const Area l_room{{{0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}},
                     {clockwise(rectangle(0.5, 0.5, 1.5, 1.5))}};
   const Overlay plain = make_overlay(l_room, {{1, 1, 0}, {2, 1, 0}}, {0, 0.7});
+  constexpr double kTurned = 1e-6;
   for (const double theta : {std::acos(0.0), 2 * std::acos(0.0), 0.3, -1.234}) {
     const Overlay turned =
         make_overlay(l_room, {{1, 1, theta}, {2, 1, theta}},
                      to_start_frame(Pose2{0, 0, theta}, Eigen::Vector2d(0, 0.7)));
-    EXPECT_NEAR(region_size(turned.intersection), region_size(plain.intersection), 1e-9);
-    EXPECT_NEAR(area_size(turned.oi), area_size(plain.oi), 1e-9) << theta;
+    EXPECT_NEAR(region_size(turned.intersection), region_size(plain.intersection), kTurned);
+    EXPECT_NEAR(area_size(turned.oi), area_size(plain.oi), kTurned) << theta;
     EXPECT_EQ(turned.oi.holes.size(), plain.oi.holes.size()) << theta;
-    EXPECT_NEAR(total_length(turned.internal_edges), total_length(plain.internal_edges), 1e-9)
+    EXPECT_NEAR(total_length(turned.internal_edges), total_length(plain.internal_edges), kTurned)
         << theta;
-    EXPECT_NEAR(total_length(turned.silhouette_edges), total_length(plain.silhouette_edges), 1e-9)
+    EXPECT_NEAR(total_length(turned.silhouette_edges), total_length(plain.silhouette_edges), kTurned)
         << theta;
     expect_pieces_classified(turned);
   }

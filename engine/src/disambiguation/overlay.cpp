@@ -59,12 +59,33 @@ double map_scale(const Area& free_world) {
   return std::max({1.0, width, height});
 }
 
+/// `area` moved by `offset`.
+Area translated(Area area, const Eigen::Vector2d& offset) {
+  for (Eigen::Vector2d& vertex : area.outer) vertex += offset;
+  for (Polygon& hole : area.holes) {
+    for (Eigen::Vector2d& vertex : hole) vertex += offset;
+  }
+  return area;
+}
+
+/// Hypothesis i's map in the start frame. With the heading of the first hypothesis it is the
+/// world map moved by h_0 - h_i, that offset snapped to 2^-20, then seen from h_0: look-alike
+/// copies found from different vertices sit a few ulps off a whole offset, and walls that
+/// coincide must coincide bit for bit (Boost.Geometry's overlay fails on walls 1e-14 apart).
+Area start_frame_map(const Area& free_world, const Pose2& first, const Pose2& hypothesis) {
+  if (hypothesis.theta != first.theta) return to_start_frame(hypothesis, free_world);
+  const Eigen::Vector2d offset(first.x - hypothesis.x, first.y - hypothesis.y);
+  const Eigen::Vector2d snapped = (offset * 0x1.0p20).array().round() * 0x1.0p-20;
+  return to_start_frame(first, translated(free_world, snapped));
+}
+
 /// seed 002 §IV step 4: each hypothesis's view of the map, centred on its start.
 std::vector<BoostMap> start_frame_maps(const Area& free_world, Overlay& overlay) {
   std::vector<BoostMap> maps;
   maps.reserve(overlay.hypotheses.size());
   for (const Pose2& hypothesis : overlay.hypotheses) {
-    overlay.maps.push_back(to_start_frame(hypothesis, free_world));
+    overlay.maps.push_back(
+        start_frame_map(free_world, overlay.hypotheses.front(), hypothesis));
     bgw::BoostPolygon polygon = bgw::to_boost(overlay.maps.back());
     const bgw::Box envelope = bg::return_envelope<bgw::Box>(polygon);
     maps.push_back({std::move(polygon), envelope});

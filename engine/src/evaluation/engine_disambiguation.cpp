@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "gridloc/engine/disambiguation/grid_space.hpp"
@@ -296,7 +297,7 @@ TrialOutcome run_trial(const Setting& setting, const Pose2& truth,
 
 double mean_of(const std::vector<TrialOutcome>& outcomes,
                const std::function<double(const TrialOutcome&)>& value) {
-  if (outcomes.empty()) return 0.0;
+  if (outcomes.empty()) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0;
   for (const TrialOutcome& outcome : outcomes) sum += value(outcome);
   return sum / static_cast<double>(outcomes.size());
@@ -305,7 +306,7 @@ double mean_of(const std::vector<TrialOutcome>& outcomes,
 double median_ms(const std::vector<TrialOutcome>& outcomes) {
   std::vector<double> ms;
   for (const TrialOutcome& outcome : outcomes) ms.push_back(outcome.ms);
-  if (ms.empty()) return 0.0;
+  if (ms.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(ms.begin(), ms.end());
   return ms.size() % 2 == 1 ? ms[ms.size() / 2] : 0.5 * (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]);
 }

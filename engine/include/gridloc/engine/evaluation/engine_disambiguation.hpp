@@ -52,6 +52,7 @@ struct EngineDisambiguationOptions {
 /// Checks the options; throws gridloc::Error naming the field.
 void validate(const EngineDisambiguationOptions& options);
 
+/// One map's results; the rates and means are NaN when no drawn pose was ambiguous.
 struct EngineDisambiguationResult {
   std::string map;
   int trials = 0;                   ///< ambiguous starts run
