@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "disambiguate_common.hpp"
+#include "disambiguate_grid.hpp"
 #include "disambiguation_render.hpp"
 #include "gridloc/engine/disambiguation/hypothesis_generation.hpp"
 #include "gridloc/engine/disambiguation/minimum_distance.hpp"
@@ -31,14 +33,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct DisambiguateArgs {
-  std::string map, scan, readings, pose, out, algorithm = "ual", strategy = "hybrid";
-  double range = kUnlimitedRange;
-  int points = MinimumDistanceOptions{}.points;
-  std::uint64_t seed = 1;
-  bool rotation = false, json = false;
-};
-
 /// A range > 0, inf allowed (CLI::PositiveNumber lets NaN through).
 CLI::Validator positive_range() {
   return CLI::Validator(
@@ -52,83 +46,30 @@ CLI::Validator positive_range() {
       "RANGE");
 }
 
-MinimumDistanceOptions planner_options(const DisambiguateArgs& args) {
-  MinimumDistanceOptions options;
-  options.algorithm = args.algorithm == "col" ? SamplingAlgorithm::Col : SamplingAlgorithm::Ual;
-  options.strategy =
-      args.strategy == "weighted" ? DistanceStrategy::Weighted : DistanceStrategy::Hybrid;
-  options.points = args.points;
-  options.seed = args.seed;
-  return options;
-}
-
 PolygonSpaceOptions space_options(const DisambiguateArgs& args) {
   PolygonSpaceOptions options;
   options.range = args.range;
   return options;
 }
 
-/// The map and the true start; the sensed inputs other than --pose need the grid twin.
-PolygonMap load_inputs(const DisambiguateArgs& args) {
+/// The polygon map; it takes a simulated start (--pose), not sensed data.
+PolygonMap load_polygon_inputs(const DisambiguateArgs& args) {
   if (!args.scan.empty() || !args.readings.empty()) {
     throw Error(
-        "disambiguate: --scan and --readings need the occupancy-grid twin of the planner, which "
-        "is not built yet; give a polygon map and the start with --pose x,y,theta");
+        "disambiguate: on a polygon map give the start with --pose x,y,theta (its view is "
+        "simulated); --scan and --readings go with an occupancy-grid map");
   }
   if (args.pose.empty()) throw Error("disambiguate: give the start with --pose x,y,theta");
-  if (!is_polygon_map_file(args.map, limits())) {
-    throw Error("--map " + args.map +
-                ": disambiguate needs a polygon map (YAML with a 'boundary'); occupancy-grid "
-                "maps need the grid twin, not built yet");
-  }
   return load_polygon_map(args.map, limits());
 }
 
-nlohmann::json points_json(const std::vector<Eigen::Vector2d>& points) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (const Eigen::Vector2d& p : points) rows.push_back({{"x", p.x()}, {"y", p.y()}});
-  return rows;
-}
-
-nlohmann::json plan_json(const MinimumDistancePlan& plan, int true_index,
-                         const TravelBound& bound) {
-  nlohmann::json hypotheses = nlohmann::json::array(), eliminated = nlohmann::json::array(),
-                 stops = nlohmann::json::array(), world = nlohmann::json::array();
-  for (const Pose2& h : plan.hypotheses) hypotheses.push_back(to_json(h));
-  const std::vector<Eigen::Vector2d> path = whole_path(plan);
-  for (const LocalizationStop& stop : plan.stops) {
-    eliminated.push_back(stop.eliminated);
-    stops.push_back({{"x", stop.point.x()},
-                     {"y", stop.point.y()},
-                     {"info", stop.info},
-                     {"value", stop.value},
-                     {"route_length_m", stop.route_length},
-                     {"sampled", stop.sampled},
-                     {"useful", stop.useful},
-                     {"eliminated", stop.eliminated}});
-  }
-  for (const int index : plan.remaining) {
-    std::vector<Eigen::Vector2d> in_world;
-    for (const Eigen::Vector2d& p : path) in_world.push_back(to_world(plan.hypotheses[index], p));
-    world.push_back({{"hypothesis", index}, {"path", points_json(in_world)}});
-  }
-  const bool survived = true_index >= 0 && std::find(plan.remaining.begin(), plan.remaining.end(),
-                                                     true_index) != plan.remaining.end();
-  return {{"hypotheses", hypotheses},
-          {"true_hypothesis", true_index},
-          {"path", points_json(path)},
-          {"path_world", world},
-          {"path_length_m", plan.path_length},
-          {"stops", plan.stops.size()},
-          {"stop_details", stops},
-          {"eliminated", eliminated},
-          {"remaining", plan.remaining},
-          {"resolved", plan.resolved},
-          {"ended", plan.ended},
-          {"true_hypothesis_survived", survived},
-          {"lower_bound_m", number_or_null(bound.distance)},
-          {"pairwise_lower_bound_m", number_or_null(bound.pairwise)},
-          {"lower_bound_is_optimum", bound.optimal}};
+nlohmann::json polygon_plan_json(const MinimumDistancePlan& plan, int true_index,
+                                 const TravelBound& bound) {
+  nlohmann::json out = plan_json(plan, true_index);
+  out["lower_bound_m"] = number_or_null(bound.distance);
+  out["pairwise_lower_bound_m"] = number_or_null(bound.pairwise);
+  out["lower_bound_is_optimum"] = bound.optimal;
+  return out;
 }
 
 void print_summary(const MinimumDistancePlan& plan, const TravelBound& bound) {
@@ -142,9 +83,11 @@ void print_summary(const MinimumDistancePlan& plan, const TravelBound& bound) {
     std::printf("stop %zu at (%.3f, %.3f) in the start frame, %.3f along the way: %zu ruled out\n",
                 s + 1, stop.point.x(), stop.point.y(), stop.route_length, stop.eliminated.size());
   }
-  std::printf("%s after %zu stops, path %.3f (lower bound %.3f%s)\n",
-              plan.resolved ? "resolved" : plan.ended.c_str(), plan.stops.size(), plan.path_length,
-              bound.distance, bound.optimal ? ", the optimum" : "");
+  std::printf(
+      "%s after %zu stops, path %.3f; lower bounds: %.3f to the nearest informative "
+      "point%s, %.3f to tell every wrong hypothesis from the truth\n",
+      plan.resolved ? "resolved" : plan.ended.c_str(), plan.stops.size(), plan.path_length,
+      bound.distance, bound.optimal ? " (the optimum)" : "", bound.pairwise);
 }
 
 /// The picture's data: the first stop's overlay, U and random points (the planner's first
@@ -160,8 +103,10 @@ DisambiguationPicture picture_of(const DisambiguateArgs& args, const PolygonMap&
                   (std::isfinite(args.range) ? plot::number(args.range) : "unlimited");
   picture.caption = std::to_string(plan.hypotheses.size()) + " hypotheses, " +
                     std::to_string(plan.stops.size()) + " stops, path " +
-                    plot::fixed(plan.path_length, 2) + ", lower bound " +
-                    plot::fixed(bound.distance, 2) + (plan.resolved ? ", resolved" : "");
+                    plot::fixed(plan.path_length, 2) + ", lower bounds " +
+                    plot::fixed(bound.distance, 2) + " (nearest informative point) and " +
+                    plot::fixed(bound.pairwise, 2) + " (every wrong hypothesis told apart)" +
+                    (plan.resolved ? ", resolved" : "");
   picture.map = map;
   picture.hypotheses = plan.hypotheses;
   picture.true_hypothesis = true_index;
@@ -188,33 +133,29 @@ void write_outputs(const DisambiguateArgs& args, const PolygonMap& map,
                    const MinimumDistancePlan& plan, int true_index, const TravelBound& bound,
                    const nlohmann::json& out) {
   const fs::path dir(args.out);
+  write_plan_json(args.out, out);
   const std::string json_path = (dir / "disambiguation.json").string();
-  std::ofstream file(json_path);
-  file << out.dump(2) << "\n";
-  if (!file) throw Error(json_path + ": cannot write the plan");
   const std::string png_path = (dir / "disambiguation.png").string();
   plot::write_png(png_path, render_disambiguation(picture_of(args, map, plan, true_index, bound)));
   if (!args.json) std::printf("wrote %s and %s\n", png_path.c_str(), json_path.c_str());
 }
 
-void make_out_dir(const std::string& out) {
-  if (out.empty()) return;
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (!fs::is_directory(out)) throw Error("--out " + out + ": cannot create the folder");
-}
-
 /// The lower bound, or 0 (the optimum) for a start no other place matches.
 TravelBound bound_for(const PolygonPlanningSpace& space, const std::vector<Pose2>& hypotheses,
                       int true_index) {
-  if (hypotheses.size() < 2) return TravelBound{0.0, Eigen::Vector2d::Zero(), 0.0, 0, true};
+  if (hypotheses.size() < 2) {  // nothing to tell apart: no travel, optimally
+    TravelBound none;
+    none.distance = none.pairwise = 0.0;
+    none.optimal = true;
+    return none;
+  }
   const double range = space.options().range;
   return travel_lower_bound(space, hypotheses, true_index, 0.0,
                             std::isfinite(range) ? range / 4.0 : kUnlimitedRange);
 }
 
-void run(const DisambiguateArgs& args) {
-  const PolygonMap map = load_inputs(args);
+void run_on_polygons(const DisambiguateArgs& args) {
+  const PolygonMap map = load_polygon_inputs(args);
   const Pose2 start = parse_pose(args.pose, "--pose");
   make_out_dir(args.out);
   const MinimumDistanceOptions options = planner_options(args);
@@ -227,13 +168,18 @@ void run(const DisambiguateArgs& args) {
       space, hypotheses, perfect_sensing(space.free_world(), start, hypotheses, args.range),
       options);
   const TravelBound bound = bound_for(space, hypotheses, true_index);
-  const nlohmann::json out = plan_json(plan, true_index, bound);
+  const nlohmann::json out = polygon_plan_json(plan, true_index, bound);
   if (args.json) {
     std::cout << out.dump(2) << "\n";
   } else {
     print_summary(plan, bound);
   }
   if (!args.out.empty()) write_outputs(args, map, plan, true_index, bound, out);
+}
+
+void run(const DisambiguateArgs& args) {
+  if (is_polygon_map_file(args.map, limits())) return run_on_polygons(args);
+  run_disambiguate_on_grid(args);
 }
 
 }  // namespace
@@ -243,13 +189,19 @@ void add_disambiguate(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "disambiguate",
       "Where to drive, as little as possible, to tell look-alike places apart (seed 002)");
-  cmd->add_option("--map", args->map, "polygon map (YAML with a 'boundary')")->required();
+  cmd->add_option("--map", args->map,
+                  "polygon map (YAML with a 'boundary': seed 002 exactly) or occupancy map "
+                  "(map_server YAML: the engine in the loop)")
+      ->required();
   auto* pose = cmd->add_option("--pose", args->pose,
                                "the robot's true start x,y,theta (m, m, rad): its view there is "
                                "simulated with a perfect sensor");
-  auto* scan = cmd->add_option("--scan", args->scan, "a laser scan CSV (needs the grid twin)");
-  auto* readings =
-      cmd->add_option("--readings", args->readings, "sonar readings JSON (needs the grid twin)");
+  auto* scan = cmd->add_option("--scan", args->scan,
+                               "occupancy maps: a laser scan CSV taken at the start; prints the "
+                               "hypotheses and the first stop to drive to");
+  auto* readings = cmd->add_option("--readings", args->readings,
+                                   "occupancy maps: sonar readings JSON taken at the start (the "
+                                   "same, with --ring)");
   pose->excludes(scan)->excludes(readings);
   scan->excludes(readings);
   cmd->add_option("--range", args->range,
@@ -269,6 +221,17 @@ void add_disambiguate(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "seed of the random points")->capture_default_str();
   cmd->add_flag("--rotation", args->rotation,
                 "match the start view up to rotation too (default: the heading is known)");
+  cmd->add_option("--ring", args->ring,
+                  "occupancy maps: the sonar ring YAML (default: the "
+                  "bundled wheelchair)");
+  cmd->add_option("--sensor", args->sensor,
+                  "occupancy maps with --pose: the simulated sensor, sonar or laser")
+      ->check(CLI::IsMember({"sonar", "laser"}))
+      ->capture_default_str();
+  cmd->add_option("--max-range", args->max_range,
+                  "occupancy maps: the laser's max range (m), of --scan and the simulated laser")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--out", args->out,
                   "folder for disambiguation.png and disambiguation.json (created if missing)");
   cmd->add_flag("--json", args->json, "print JSON instead of the summary");

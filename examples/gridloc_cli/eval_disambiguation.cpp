@@ -121,13 +121,13 @@ EngineDisambiguationOptions engine_loop_options(const DisambiguationEvalArgs& ar
   EngineDisambiguationOptions options;
   options.trials = inputs.trials;
   options.seed = seed;
-  options.laser.enabled = args.sensor == "laser";
-  options.laser.max_range = inputs.laser_max_range;
-  options.laser.sigma_m = inputs.laser_sigma_m;
-  options.laser.beams = inputs.laser_beams;
-  options.planner.algorithm = protocol.algorithms.front();
-  options.planner.strategy = protocol.strategies.front();
-  options.planner.points = protocol.points.front();
+  options.loop.laser.enabled = args.sensor == "laser";
+  options.loop.laser.max_range = inputs.laser_max_range;
+  options.loop.laser.sigma_m = inputs.laser_sigma_m;
+  options.loop.laser.beams = inputs.laser_beams;
+  options.loop.planner.algorithm = protocol.algorithms.front();
+  options.loop.planner.strategy = protocol.strategies.front();
+  options.loop.planner.points = protocol.points.front();
   return options;
 }
 
@@ -138,9 +138,9 @@ nlohmann::json engine_loop_json(const DisambiguationEvalArgs& args,
   for (const EngineDisambiguationResult& row : results) {
     rows.push_back(
         {{"map", row.map},
-         {"algorithm", algorithm_name(options.planner.algorithm)},
-         {"strategy", strategy_name(options.planner.strategy)},
-         {"points", options.planner.points},
+         {"algorithm", algorithm_name(options.loop.planner.algorithm)},
+         {"strategy", strategy_name(options.loop.planner.strategy)},
+         {"points", options.loop.planner.points},
          {"trials", row.trials},
          {"drawn", row.drawn},
          {"truth_seeded", row.truth_seeded},
@@ -161,8 +161,8 @@ void print_engine_loop_table(const DisambiguationEvalArgs& args,
                              const EngineDisambiguationOptions& options,
                              const std::vector<EngineDisambiguationResult>& results) {
   std::printf("Seed 002 with the engine in the loop: %s, %s %s, %d points; ambiguous starts\n",
-              args.sensor.c_str(), algorithm_name(options.planner.algorithm),
-              strategy_name(options.planner.strategy), options.planner.points);
+              args.sensor.c_str(), algorithm_name(options.loop.planner.algorithm),
+              strategy_name(options.loop.planner.strategy), options.loop.planner.points);
   std::printf("%-22s %6s %6s %6s %9s %6s %9s %7s %10s %6s %9s\n", "map", "trials", "drawn", "hyps",
               "survived", "wrong", "resolved", "path", "noise-free", "stops", "median ms");
   for (const EngineDisambiguationResult& row : results) {

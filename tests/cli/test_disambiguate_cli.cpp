@@ -65,6 +65,43 @@ TEST(DisambiguateCli, BadInputGetsOneLineNamingIt) {
                    "--algorithm");
 }
 
+const std::string kSymmetricRoom = std::string(GRIDLOC_TEST_MAPS_DIR) + "/room_symmetric.yaml";
+
+TEST(DisambiguateCli, OnAnOccupancyMapTheEngineKeepsTheTwinItCannotTellApart) {
+  TempDir dir;
+  const CliRun run = run_cli(dir, "disambiguate --map " + quote(kSymmetricRoom) +
+                                      " --pose 1.1,1.76,1.29 --points 40 --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json plan = nlohmann::json::parse(run.out);
+  EXPECT_EQ(plan["hypotheses"].size(), 2u);  // the pose and its twin turned by 180 degrees
+  EXPECT_FALSE(plan["resolved"]);
+  EXPECT_TRUE(plan["true_hypothesis_survived"]);
+  EXPECT_EQ(plan["remaining"].size(), 2u);
+}
+
+TEST(DisambiguateCli, FromReadingsItAnswersWhereToDriveFirst) {
+  TempDir dir;
+  const std::string readings = dir.file("r.json");
+  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(kSymmetricRoom) +
+                             " --pose 1.1,1.76,1.29 --out " + quote(readings))
+                .status,
+            0);
+  const CliRun run = run_cli(dir, "disambiguate --map " + quote(kSymmetricRoom) + " --readings " +
+                                      quote(readings) + " --points 40 --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json plan = nlohmann::json::parse(run.out);
+  EXPECT_EQ(plan["hypotheses"].size(), 2u);
+  EXPECT_TRUE(plan["true_hypothesis_survived"].is_null());  // nobody knows the truth here
+  EXPECT_LE(plan["stops"].get<int>(), 1);
+  EXPECT_FALSE(plan["resolved"]);
+  expect_cli_error(run_cli(dir, "disambiguate --map " + quote(kSymmetricRoom) + " --readings " +
+                                    quote(readings) + " --range 2"),
+                   "--range");
+  expect_cli_error(
+      run_cli(dir, "disambiguate --map " + quote(kThreeRooms) + " --readings " + quote(readings)),
+      "--pose");
+}
+
 TEST(DisambiguateCli, TheProtocolRunsOnASmallSet) {
   TempDir dir;
   const CliRun run = run_cli(

@@ -21,7 +21,7 @@ SonarRing wheelchair() {
 EngineDisambiguationOptions few_trials(int trials) {
   EngineDisambiguationOptions options;
   options.trials = trials;
-  options.planner.points = 40;
+  options.loop.planner.points = 40;
   return options;
 }
 
@@ -51,7 +51,7 @@ TEST(EngineDisambiguation, BadOptionsAreRefused) {
   EngineDisambiguationOptions options = few_trials(0);
   EXPECT_THROW(validate(options), Error);
   options = few_trials(1);
-  options.elimination.drop_ratio = 1.5;
+  options.loop.elimination.drop_ratio = 1.5;
   EXPECT_THROW(validate(options), Error);
 }
 

@@ -1,0 +1,114 @@
+#include "disambiguate_grid.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.hpp"
+#include "gridloc/engine/evaluation/engine_loop.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/range_scan.hpp"
+#include "gridloc/sensors/readings_io.hpp"
+#include "limit_options.hpp"
+#include "options.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+/// The sensor: a laser for --scan (or --pose with --sensor laser), else the sonar ring.
+EngineLoopOptions loop_options(const DisambiguateArgs& args) {
+  EngineLoopOptions options;
+  options.planner = planner_options(args);
+  options.laser.enabled =
+      !args.scan.empty() || (args.scan.empty() && args.readings.empty() && args.sensor == "laser");
+  options.laser.max_range = args.max_range;
+  return options;
+}
+
+void check_inputs(const DisambiguateArgs& args) {
+  if (args.pose.empty() && args.scan.empty() && args.readings.empty()) {
+    throw Error(
+        "disambiguate: give the start with --pose x,y,theta, --readings R.json or "
+        "--scan S.csv");
+  }
+  if (args.rotation) throw Error("--rotation belongs to polygon maps (the engine finds headings)");
+  if (std::isfinite(args.range)) {
+    throw Error(
+        "--range belongs to polygon maps; on an occupancy map the sensor's own range "
+        "counts (--max-range for a laser, the ring's for sonars)");
+  }
+}
+
+/// The observation taken at the start, from the file given.
+Observation sensed_at_start(const DisambiguateArgs& args) {
+  Observation observation;
+  if (!args.scan.empty()) {
+    observation.scan = load_scan_csv(args.scan, args.max_range, limits());
+  } else {
+    observation.ranges = load_readings(args.readings, limits());
+  }
+  return observation;
+}
+
+void print_hypotheses(const std::vector<Pose2>& hypotheses) {
+  std::printf("%zu hypotheses from the engine's global search\n", hypotheses.size());
+  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
+    const Pose2& h = hypotheses[i];
+    std::printf("  %2zu  (%.3f, %.3f, %.3f rad)\n", i, h.x, h.y, h.theta);
+  }
+}
+
+/// --pose: the chair simulated through the whole plan, beside the noise-free plan.
+nlohmann::json simulated_run(const EngineLoop& loop, const DisambiguateArgs& args) {
+  const Pose2 truth = parse_pose(args.pose, "--pose");
+  std::vector<Pose2> hypotheses = loop.hypotheses(loop.observe(truth, args.seed));
+  const EngineLoopRun run = loop.run(truth, std::move(hypotheses), args.seed);
+  nlohmann::json out = plan_json(run.plan, run.true_hypothesis);
+  out["noise_free_path_length_m"] = run.noise_free.path_length;
+  out["noise_free_resolved"] = run.noise_free.resolved;
+  if (args.json) return out;
+  print_hypotheses(run.hypotheses);
+  std::printf("%s after %zu stops, path %.3f m (noise-free plan: %.3f m); the truth %s\n",
+              run.plan.resolved ? "resolved" : run.plan.ended.c_str(), run.plan.stops.size(),
+              run.plan.path_length, run.noise_free.path_length,
+              out["true_hypothesis_survived"] == true ? "stands" : "was lost");
+  return out;
+}
+
+/// --readings or --scan: the hypotheses and the first stop (nothing sensed there yet).
+nlohmann::json first_stop(const EngineLoop& loop, const DisambiguateArgs& args) {
+  const std::vector<Pose2> hypotheses = loop.hypotheses(sensed_at_start(args));
+  const MinimumDistancePlan plan = loop.next_stop(hypotheses, args.seed);
+  nlohmann::json out = plan_json(plan, -1);
+  out["ended"] = plan.stops.empty() ? plan.ended : "drive to the stop, sense, and ask again";
+  if (args.json) return out;
+  print_hypotheses(hypotheses);
+  if (plan.stops.empty()) {
+    std::printf("%s: no stop to drive to\n", plan.resolved ? "unique" : plan.ended.c_str());
+  } else {
+    const LocalizationStop& stop = plan.stops.front();
+    std::printf(
+        "drive %.3f m to (%.3f, %.3f) in the start frame and sense there (expected to "
+        "rule out %.2f hypotheses)\n",
+        stop.route_length, stop.point.x(), stop.point.y(), stop.info);
+  }
+  return out;
+}
+
+}  // namespace
+
+void run_disambiguate_on_grid(const DisambiguateArgs& args) {
+  check_inputs(args);
+  make_out_dir(args.out);
+  const SonarRing ring = load_sonar_ring(
+      args.ring.empty() ? data_dir() + "/sensors/wheelchair_14.yaml" : args.ring, limits());
+  const EngineLoop loop(load_map(args.map), ring, loop_options(args));
+  const nlohmann::json out = args.pose.empty() ? first_stop(loop, args) : simulated_run(loop, args);
+  if (args.json) std::cout << out.dump(2) << "\n";
+  if (!args.out.empty()) {
+    write_plan_json(args.out, out);
+    if (!args.json) std::printf("wrote %s/disambiguation.json\n", args.out.c_str());
+  }
+}
+
+}  // namespace gridloc::cli
