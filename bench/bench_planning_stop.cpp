@@ -1,7 +1,8 @@
 /// Seed 002's planning time per stop (issue 15's target: <= 100 ms on a 400-vertex office):
 /// the first stop of COL or UAL with the hybrid strategy and 250 random points, on
 /// random_office(1) (400 vertices) from an ambiguous start, per sensor range.
-/// - BM_PlanningStop/<algorithm 0 col, 1 ual>/<range: 0 unlimited, else tenths of a cell>:
+/// - BM_PlanningStop/<algorithm 0 col, 1 ual>/<range: 0 unlimited, else tenths of a cell>
+///   /<threads>:
 ///   one iteration = one stop (overlay, U for UAL, the random points' info and distances, the
 ///   route there, the perfect sensor's elimination).
 #include <benchmark/benchmark.h>
@@ -28,6 +29,7 @@ void BM_PlanningStop(benchmark::State& state) {
   options.strategy = DistanceStrategy::Hybrid;
   options.points = 250;
   options.max_stops = 1;
+  options.threads = static_cast<int>(state.range(2));
   const StopSensing sense = perfect_sensing(free_world, start, hypotheses, range);
   for (auto _ : state) {
     benchmark::DoNotOptimize(localize_with_minimum_travel(space, hypotheses, sense, options));
@@ -35,7 +37,9 @@ void BM_PlanningStop(benchmark::State& state) {
   state.counters["hypotheses"] = static_cast<double>(hypotheses.size());
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_PlanningStop)->ArgsProduct({{0, 1}, {0, 50, 20, 9}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlanningStop)
+    ->ArgsProduct({{0, 1}, {0, 50, 20, 9}, {1, 2}})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gridloc::bench

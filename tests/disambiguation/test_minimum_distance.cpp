@@ -17,7 +17,7 @@ namespace {
 const Pose2 kStart{3.5, 0.5, 0.0};  // the middle room of the comb
 
 MinimumDistancePlan plan_for(SamplingAlgorithm algorithm, DistanceStrategy strategy, double range,
-                             std::uint64_t seed = 1) {
+                             std::uint64_t seed = 1, int threads = 1) {
   const Area map = test::comb_rooms();
   const std::vector<Pose2> hypotheses = start_hypotheses(map, kStart, {range, false, 1e-6});
   MinimumDistanceOptions options;
@@ -25,6 +25,7 @@ MinimumDistancePlan plan_for(SamplingAlgorithm algorithm, DistanceStrategy strat
   options.strategy = strategy;
   options.points = 40;
   options.seed = seed;
+  options.threads = threads;
   const PolygonPlanningSpace space(map, {range, 1e-6, 16});
   return localize_with_minimum_travel(space, hypotheses,
                                       perfect_sensing(map, kStart, hypotheses, range), options);
@@ -82,6 +83,19 @@ TEST(MinimumDistance, IsDeterministicForASeed) {
   EXPECT_EQ(first.path_length, again.path_length);
 }
 
+TEST(MinimumDistance, TwoThreadsPlanTheSamePathAsOne) {
+  for (const SamplingAlgorithm algorithm : {SamplingAlgorithm::Col, SamplingAlgorithm::Ual}) {
+    const MinimumDistancePlan one = plan_for(algorithm, DistanceStrategy::Weighted, 1.5, 3, 1);
+    const MinimumDistancePlan two = plan_for(algorithm, DistanceStrategy::Weighted, 1.5, 3, 2);
+    ASSERT_EQ(one.stops.size(), two.stops.size());
+    for (std::size_t s = 0; s < one.stops.size(); ++s) {
+      EXPECT_EQ(one.stops[s].point, two.stops[s].point);
+      EXPECT_EQ(one.stops[s].value, two.stops[s].value);
+    }
+    EXPECT_EQ(one.path_length, two.path_length);
+  }
+}
+
 TEST(MinimumDistance, OneHypothesisNeedsNoTravelAndBadOptionsAreRefused) {
   const Area map = test::comb_rooms();
   const std::vector<Pose2> one{{0.4, 3.0, 0.0}};
@@ -97,6 +111,9 @@ TEST(MinimumDistance, OneHypothesisNeedsNoTravelAndBadOptionsAreRefused) {
   EXPECT_THROW(PolygonPlanningSpace(map, {std::nan(""), 1e-6, 16}), Error);
   MinimumDistanceOptions bad;
   bad.points = 0;
+  EXPECT_THROW(validate(bad), Error);
+  bad = {};
+  bad.threads = 0;
   EXPECT_THROW(validate(bad), Error);
   EXPECT_THROW(travel_lower_bound(space, one), Error);
 }

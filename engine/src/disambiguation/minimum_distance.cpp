@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <optional>
 
 #include "gridloc/engine/disambiguation/polygon_space.hpp"
@@ -38,18 +40,51 @@ std::vector<Pose2> poses_of(const std::vector<Pose2>& hypotheses, const std::vec
   return poses;
 }
 
+struct PointScore {
+  double info = 0.0;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+/// Every point's info and distance, on `threads` threads (each point on its own: the same
+/// numbers whatever the threads).
+std::vector<PointScore> point_scores(const StopContext& context,
+                                     const std::vector<Eigen::Vector2d>& points,
+                                     const OverlayPaths& distance_from) {
+  std::vector<PointScore> scores(points.size());
+  std::exception_ptr failure;
+  const int threads = context.options.threads;
+  const long count = static_cast<long>(points.size());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if (threads > 1)
+  for (long i = 0; i < count; ++i) {
+    try {
+      PointScore& score = scores[static_cast<std::size_t>(i)];
+      score.info = context.space.info(context.active, points[static_cast<std::size_t>(i)]);
+      if (score.info > 0.0) {
+        score.distance = distance_from.distance_to(points[static_cast<std::size_t>(i)]);
+      }
+    } catch (...) {  // an exception must not leave the parallel region
+#pragma omp critical(gridloc_point_scores)
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  return scores;
+}
+
 /// Scores one round of points; keeps the first of the highest Value (ties: lowest index).
 void score_round(const StopContext& context, const std::vector<Eigen::Vector2d>& points,
                  const OverlayPaths& distance_from, StopChoice& choice) {
-  for (const Eigen::Vector2d& point : points) {
+  const std::vector<PointScore> scores = point_scores(context, points, distance_from);
+  for (std::size_t i = 0; i < points.size(); ++i) {
     ++choice.sampled;
-    const double info = context.space.info(context.active, point);
-    if (!(info > 0.0)) continue;
-    const double distance = distance_from.distance_to(point);
-    if (!std::isfinite(distance)) continue;
+    const PointScore& score = scores[i];
+    if (!(score.info > 0.0) || !std::isfinite(score.distance)) continue;
     ++choice.useful;
-    const double value = info / std::max(distance, 1e-9);  // seed 002 §IV-A: info / distance_OI
-    if (!choice.best || value > choice.best->value) choice.best = ScoredPoint{point, info, value};
+    // seed 002 §IV-A: Value = info / distance_OI
+    const double value = score.info / std::max(score.distance, 1e-9);
+    if (!choice.best || value > choice.best->value) {
+      choice.best = ScoredPoint{points[i], score.info, value};
+    }
   }
 }
 
@@ -121,6 +156,9 @@ void validate(const MinimumDistanceOptions& options) {
   if (options.points < 1) throw Error("disambiguation: points must be >= 1");
   if (options.rounds < 1) throw Error("disambiguation: rounds must be >= 1");
   if (options.max_stops < 1) throw Error("disambiguation: max_stops must be >= 1");
+  if (options.threads < 1 || options.threads > 64) {
+    throw Error("disambiguation: threads must be in [1, 64]");
+  }
 }
 
 StopSensing perfect_sensing(const Area& free_world, const Pose2& true_start,

@@ -28,6 +28,8 @@ struct MinimumDistanceOptions {
   /// gives up for want of a useful point (>= 1).
   int rounds = 8;
   int max_stops = 100;  ///< the most stops before giving up (>= 1)
+  /// Threads scoring a round's points (OpenMP; the same plan for any number).
+  int threads = 1;
 };
 
 /// Checks the options; throws gridloc::Error naming the field.
