@@ -9,6 +9,8 @@
 namespace gridloc {
 namespace {
 
+constexpr double kMaxLatticePoints = 5e7;  ///< sample_lattice's bound (memory: 16 bytes each)
+
 struct Box {
   Eigen::Vector2d low, high;
 };
@@ -63,6 +65,12 @@ std::vector<Eigen::Vector2d> sample_lattice(const Region& region, double step) {
   for (const Area& area : region) {
     if (area.outer.empty()) continue;
     const Box box = bounding_box(area);
+    const Eigen::Vector2d cells = (box.high - box.low) / step;
+    if (cells.x() * cells.y() > kMaxLatticePoints) {
+      throw Error("sampling: a lattice of step " + std::to_string(step) + " over an area of " +
+                  std::to_string(area_size(area)) +
+                  " square units would hold more than 5e7 points");
+    }
     for (double y = box.low.y() + 0.5 * step; y < box.high.y(); y += step) {
       for (double x = box.low.x() + 0.5 * step; x < box.high.x(); x += step) {
         if (covers(area, {x, y})) points.emplace_back(x, y);

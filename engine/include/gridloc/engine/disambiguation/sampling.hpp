@@ -15,7 +15,8 @@ namespace gridloc {
 std::vector<Eigen::Vector2d> sample_uniform(const Region& region, int count, Rng& rng);
 
 /// The points of a square lattice of spacing `step` (offset by half a step from the region's
-/// bounding box) that the region covers: a fine, deterministic sampling.
+/// bounding box) that the region covers: a fine, deterministic sampling. Throws
+/// gridloc::Error for a step that is not > 0 or a lattice over 5e7 points per area.
 std::vector<Eigen::Vector2d> sample_lattice(const Region& region, double step);
 
 }  // namespace gridloc
