@@ -169,7 +169,8 @@ TEST(Overlay, AllHypothesesTurnedAlikeTurnTheOverlayOnly) {
     EXPECT_EQ(turned.oi.holes.size(), plain.oi.holes.size()) << theta;
     EXPECT_NEAR(total_length(turned.internal_edges), total_length(plain.internal_edges), kTurned)
         << theta;
-    EXPECT_NEAR(total_length(turned.silhouette_edges), total_length(plain.silhouette_edges), kTurned)
+    EXPECT_NEAR(total_length(turned.silhouette_edges), total_length(plain.silhouette_edges),
+                kTurned)
         << theta;
     expect_pieces_classified(turned);
   }

@@ -84,8 +84,7 @@ std::vector<BoostMap> start_frame_maps(const Area& free_world, Overlay& overlay)
   std::vector<BoostMap> maps;
   maps.reserve(overlay.hypotheses.size());
   for (const Pose2& hypothesis : overlay.hypotheses) {
-    overlay.maps.push_back(
-        start_frame_map(free_world, overlay.hypotheses.front(), hypothesis));
+    overlay.maps.push_back(start_frame_map(free_world, overlay.hypotheses.front(), hypothesis));
     bgw::BoostPolygon polygon = bgw::to_boost(overlay.maps.back());
     const bgw::Box envelope = bg::return_envelope<bgw::Box>(polygon);
     maps.push_back({std::move(polygon), envelope});
