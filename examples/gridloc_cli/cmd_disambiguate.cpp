@@ -219,6 +219,9 @@ void add_disambiguate(CLI::App& app) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of the random points")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "threads scoring the random points (same plan)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   cmd->add_flag("--rotation", args->rotation,
                 "match the start view up to rotation too (default: the heading is known)");
   cmd->add_option("--ring", args->ring,

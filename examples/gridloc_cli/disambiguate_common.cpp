@@ -34,12 +34,9 @@ nlohmann::json stops_json(const MinimumDistancePlan& plan) {
 
 /// The path under each standing hypothesis, in the world.
 nlohmann::json world_paths(const MinimumDistancePlan& plan) {
-  const std::vector<Eigen::Vector2d> path = whole_path(plan);
   nlohmann::json world = nlohmann::json::array();
   for (const int index : plan.remaining) {
-    std::vector<Eigen::Vector2d> in_world;
-    for (const Eigen::Vector2d& p : path) in_world.push_back(to_world(plan.hypotheses[index], p));
-    world.push_back({{"hypothesis", index}, {"path", points_json(in_world)}});
+    world.push_back({{"hypothesis", index}, {"path", points_json(world_path(plan, index))}});
   }
   return world;
 }
@@ -53,12 +50,15 @@ MinimumDistanceOptions planner_options(const DisambiguateArgs& args) {
       args.strategy == "weighted" ? DistanceStrategy::Weighted : DistanceStrategy::Hybrid;
   options.points = args.points;
   options.seed = args.seed;
+  options.threads = args.threads;
   return options;
 }
 
 nlohmann::json plan_json(const MinimumDistancePlan& plan, int true_index) {
-  nlohmann::json hypotheses = nlohmann::json::array(), eliminated = nlohmann::json::array();
+  nlohmann::json hypotheses = nlohmann::json::array(), eliminated = nlohmann::json::array(),
+                 refit = nlohmann::json::array();
   for (const Pose2& h : plan.hypotheses) hypotheses.push_back(to_json(h));
+  for (const Pose2& h : plan.refit) refit.push_back(to_json(h));
   for (const LocalizationStop& stop : plan.stops) eliminated.push_back(stop.eliminated);
   const auto& left = plan.remaining;
   const bool survived = std::find(left.begin(), left.end(), true_index) != left.end();
@@ -72,6 +72,7 @@ nlohmann::json plan_json(const MinimumDistancePlan& plan, int true_index) {
           {"eliminated", eliminated},
           {"remaining", plan.remaining},
           {"resolved", plan.resolved},
+          {"refit_hypotheses", refit},
           {"ended", plan.ended},
           {"true_hypothesis_survived",
            true_index >= 0 ? nlohmann::json(survived) : nlohmann::json(nullptr)}};

@@ -17,6 +17,7 @@ struct DisambiguateArgs {
   double range = kUnlimitedRange;
   double max_range = 8.0;  ///< a scan CSV's max range, and the simulated laser's
   int points = MinimumDistanceOptions{}.points;
+  int threads = 1;
   std::uint64_t seed = 1;
   bool rotation = false, json = false;
 };

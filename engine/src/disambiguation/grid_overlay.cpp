@@ -16,6 +16,9 @@ namespace {
 
 /// How far (cells) an anchor outside the cells free in every map may be moved to one.
 constexpr int kAnchorSnapCells = 3;
+/// The most lattice cells an overlay holds (its per-cell masks, counts and Dijkstra arrays
+/// take about 30 bytes each).
+constexpr double kMaxLatticeCells = 5e7;
 
 using Box = Eigen::AlignedBox2d;
 
@@ -223,6 +226,11 @@ GridOverlay make_grid_overlay(const OccupancyMap& map, const std::vector<Pose2>&
   check_inputs(map, hypotheses, range, anchor);
   GridOverlay overlay;
   overlay.grid = make_lattice(map, hypotheses, anchor);  // seed 002 §IV-C step 4
+  if (static_cast<double>(overlay.grid.width) * overlay.grid.height > kMaxLatticeCells) {
+    throw Error("make_grid_overlay: the start-frame lattice would hold " +
+                std::to_string(static_cast<double>(overlay.grid.width) * overlay.grid.height) +
+                " cells, more than 5e7 (a map this large needs a coarser resolution)");
+  }
   overlay.hypotheses = hypotheses;
   overlay.range = range;
   const std::vector<int> free_maps = count_free_maps(map, overlay.grid, hypotheses);

@@ -13,6 +13,9 @@
 namespace gridloc {
 namespace {
 
+/// The most random points one stop draws over all its rounds (seed 002 step 8 doubles them).
+constexpr long long kMaxPointsPerStop = 1 << 22;
+
 struct ScoredPoint {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
   double info = 0.0;
@@ -79,6 +82,7 @@ void score_round(const StopContext& context, const std::vector<Eigen::Vector2d>&
     ++choice.sampled;
     const PointScore& score = scores[i];
     if (!(score.info > 0.0) || !std::isfinite(score.distance)) continue;
+    if (score.distance < context.options.min_travel_m) continue;
     ++choice.useful;
     // seed 002 §IV-A: Value = info / distance_OI
     const double value = score.info / std::max(score.distance, 1e-9);
@@ -94,10 +98,11 @@ StopChoice choose_stop(const StopContext& context, const StopOverlay& overlay,
   StopChoice choice;
   long long count = context.options.points;
   for (int round = 0; round < context.options.rounds && !choice.best; ++round) {
+    if (choice.sampled + count > kMaxPointsPerStop) break;  // the doubling's budget is spent
     const std::vector<Eigen::Vector2d> points = overlay.sample(
         context.options.algorithm, static_cast<int>(count), rng, choice.sampled_useful);
     score_round(context, points, distance_from, choice);
-    count = std::min<long long>(2 * count, 1 << 20);
+    count *= 2;
   }
   return choice;
 }
@@ -110,6 +115,19 @@ std::vector<int> ruled_out(const std::vector<int>& active, const std::vector<int
     }
   }
   return eliminated;
+}
+
+/// The sensing's answer must name standing hypotheses, each once.
+void check_reading(const StopReading& reading, const std::vector<int>& active) {
+  std::vector<int> seen;
+  for (const int index : reading.consistent) {
+    if (std::find(active.begin(), active.end(), index) == active.end() ||
+        std::find(seen.begin(), seen.end(), index) != seen.end()) {
+      throw Error("disambiguation: the sensing kept hypothesis " + std::to_string(index) +
+                  ", which is not standing or is named twice");
+    }
+    seen.push_back(index);
+  }
 }
 
 /// The sensing's refit start poses, where it gave them.
@@ -153,7 +171,12 @@ std::optional<LocalizationStop> plan_stop(const StopContext& context,
 }  // namespace
 
 void validate(const MinimumDistanceOptions& options) {
-  if (options.points < 1) throw Error("disambiguation: points must be >= 1");
+  if (options.points < 1 || options.points > 1000000) {
+    throw Error("disambiguation: points must be in [1, 1000000]");
+  }
+  if (!(options.min_travel_m >= 0.0) || !std::isfinite(options.min_travel_m)) {
+    throw Error("disambiguation: min_travel_m must be a finite number of metres >= 0");
+  }
   if (options.rounds < 1) throw Error("disambiguation: rounds must be >= 1");
   if (options.max_stops < 1) throw Error("disambiguation: max_stops must be >= 1");
   if (options.threads < 1 || options.threads > 64) {
@@ -176,6 +199,18 @@ StopSensing perfect_sensing(const Area& free_world, const Pose2& true_start,
     }
     return reading;
   };
+}
+
+std::vector<Eigen::Vector2d> world_path(const MinimumDistancePlan& plan, int hypothesis) {
+  const std::size_t h = static_cast<std::size_t>(hypothesis);
+  std::vector<Eigen::Vector2d> path{to_world(plan.hypotheses.at(h), Eigen::Vector2d::Zero())};
+  for (const LocalizationStop& stop : plan.stops) {
+    const Pose2& start = stop.frame.empty() ? plan.hypotheses[h] : stop.frame.at(h);
+    for (std::size_t k = 1; k < stop.route.size(); ++k) {
+      path.push_back(to_world(start, stop.route[k]));
+    }
+  }
+  return path;
 }
 
 std::vector<Eigen::Vector2d> whole_path(const MinimumDistancePlan& plan) {
@@ -210,7 +245,9 @@ MinimumDistancePlan localize_with_minimum_travel(const PlanningSpace& space,
       plan.ended = "no useful point";
       break;
     }
+    stop->frame = plan.refit;  // the poses this stop was planned with
     const StopReading reading = sense(stop->point, stop->route, active);  // seed 002 step 10
+    check_reading(reading, active);
     const std::vector<int>& remaining = reading.consistent;
     take_refits(reading, plan.refit);
     stop->eliminated = ruled_out(active, remaining);

@@ -46,11 +46,16 @@ Eigen::Vector2d point_in(const Area& area, const Box& box, Rng& rng) {
 std::vector<Eigen::Vector2d> sample_uniform(const Region& region, int count, Rng& rng) {
   std::vector<double> cumulative;
   double total = 0.0;
-  for (const Area& area : region) cumulative.push_back(total += std::max(0.0, area_size(area)));
+  for (const Area& area : region) {  // a ring of fewer than 3 vertices has no area: never drawn
+    const double size = area.outer.size() < 3 ? 0.0 : std::max(0.0, area_size(area));
+    cumulative.push_back(total += size);
+  }
   std::vector<Eigen::Vector2d> points;
   if (region.empty() || !(total > 0.0)) return points;
   std::vector<Box> boxes;
-  for (const Area& area : region) boxes.push_back(bounding_box(area));
+  for (const Area& area : region) {
+    boxes.push_back(area.outer.empty() ? Box{} : bounding_box(area));
+  }
   points.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int i = 0; i < count; ++i) {
     const std::size_t chosen = area_at_share(cumulative, rng.uniform());
@@ -63,7 +68,7 @@ std::vector<Eigen::Vector2d> sample_lattice(const Region& region, double step) {
   if (!(step > 0.0) || !std::isfinite(step)) throw Error("sampling: lattice step must be > 0");
   std::vector<Eigen::Vector2d> points;
   for (const Area& area : region) {
-    if (area.outer.empty()) continue;
+    if (area.outer.size() < 3) continue;
     const Box box = bounding_box(area);
     const Eigen::Vector2d cells = (box.high - box.low) / step;
     if (cells.x() * cells.y() > kMaxLatticePoints) {

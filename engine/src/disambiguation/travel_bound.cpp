@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "gridloc/grids/error.hpp"
@@ -30,30 +31,35 @@ std::vector<LatticePoint> points_by_distance(const StopOverlay& overlay, double 
   return points;
 }
 
-/// Walks the points nearest first until every wrong hypothesis has been told from the truth
-/// (or, without the truth, until the first informative point).
-void walk_lattice(const PlanningSpace& space, const std::vector<Pose2>& hypotheses, int truth,
-                  const std::vector<LatticePoint>& points, TravelBound& bound) {
-  std::vector<bool> told(hypotheses.size(), false);
-  std::size_t untold = truth >= 0 ? hypotheses.size() - 1 : 0;
-  if (truth >= 0) told[static_cast<std::size_t>(truth)] = true;
+/// The way to the nearest lattice point whose classes pass `informative`, walking nearest first.
+template <class Informative>
+double nearest_where(const std::vector<LatticePoint>& points, const Informative& informative,
+                     Eigen::Vector2d& where) {
   for (const LatticePoint& lattice : points) {
-    if (std::isfinite(bound.distance) && untold == 0) break;
-    const std::vector<int> classes = space.classes(hypotheses, lattice.point);
-    const bool informative =
-        std::any_of(classes.begin(), classes.end(), [](int c) { return c != 0; });
-    if (informative && !std::isfinite(bound.distance)) {
-      bound.distance = lattice.distance;
-      bound.point = lattice.point;
-    }
-    for (std::size_t j = 0; truth >= 0 && j < hypotheses.size(); ++j) {
-      if (told[j] || classes[j] == classes[static_cast<std::size_t>(truth)]) continue;
-      told[j] = true;
-      --untold;
-      bound.pairwise = lattice.distance;  // nearest first: the last one told is the farthest
+    if (informative(lattice.point)) {
+      where = lattice.point;
+      return lattice.distance;
     }
   }
-  if (truth >= 0 && untold > 0) bound.pairwise = std::numeric_limits<double>::infinity();
+  return std::numeric_limits<double>::infinity();
+}
+
+double lattice_step(const StopOverlay& overlay, double step, double max_step) {
+  if (step > 0.0) return step;
+  return std::min(max_step, std::sqrt(std::max(overlay.oi_size(), 1e-12) / kLatticePoints));
+}
+
+/// Telling wrong hypothesis j from the truth: until then their views agree, so the robot has
+/// stayed where both maps are free, in the OI of the pair (which holds the OI of all).
+double pair_distance(const PlanningSpace& space, const Pose2& truth, const Pose2& wrong,
+                     double step, double max_step) {
+  const std::vector<Pose2> pair{truth, wrong};
+  const std::unique_ptr<StopOverlay> overlay = space.overlay(pair);
+  const std::vector<LatticePoint> points =
+      points_by_distance(*overlay, lattice_step(*overlay, step, max_step));
+  Eigen::Vector2d where;
+  return nearest_where(
+      points, [&](const Eigen::Vector2d& p) { return space.classes(pair, p)[1] != 0; }, where);
 }
 
 }  // namespace
@@ -69,14 +75,26 @@ TravelBound travel_lower_bound(const PlanningSpace& space, const std::vector<Pos
   }
   const std::unique_ptr<StopOverlay> overlay = space.overlay(hypotheses);
   TravelBound bound;
-  bound.step =
-      step > 0.0
-          ? step
-          : std::min(max_step, std::sqrt(std::max(overlay->oi_size(), 1e-12) / kLatticePoints));
+  bound.step = lattice_step(*overlay, step, max_step);
   bound.optimal = hypotheses.size() == 2;
   const std::vector<LatticePoint> points = points_by_distance(*overlay, bound.step);
   bound.points = static_cast<int>(points.size());
-  walk_lattice(space, hypotheses, truth, points, bound);
+  // Until the first elimination every view agrees: the robot is in the OI of all.
+  bound.distance = nearest_where(
+      points,
+      [&](const Eigen::Vector2d& p) {
+        const std::vector<int> classes = space.classes(hypotheses, p);
+        return std::any_of(classes.begin(), classes.end(), [](int c) { return c != 0; });
+      },
+      bound.point);
+  if (truth < 0) return bound;
+  bound.pairwise = 0.0;
+  for (std::size_t j = 0; j < hypotheses.size(); ++j) {
+    if (static_cast<int>(j) == truth) continue;
+    bound.pairwise =
+        std::max(bound.pairwise, pair_distance(space, hypotheses[static_cast<std::size_t>(truth)],
+                                               hypotheses[j], step, max_step));
+  }
   return bound;
 }
 

@@ -13,6 +13,7 @@ namespace gridloc {
 namespace {
 
 struct TrialOutcome {
+  bool error = false;
   int hypotheses = 0;
   bool truth_seeded = false, true_survived = false, wrong_answer = false, resolved = false;
   bool noise_free_resolved = false;
@@ -65,6 +66,7 @@ EngineDisambiguationResult summarize(const std::string& name, int drawn,
   for (const TrialOutcome& outcome : outcomes) {
     row.truth_seeded += outcome.truth_seeded ? 1 : 0;
     row.wrong_answers += outcome.wrong_answer ? 1 : 0;
+    row.errors += outcome.error ? 1 : 0;
   }
   row.true_survived_rate = mean_of(outcomes, [](const TrialOutcome& o) { return o.true_survived; });
   row.resolved_rate = mean_of(outcomes, [](const TrialOutcome& o) { return o.resolved; });
@@ -94,7 +96,14 @@ EngineDisambiguationResult run_map(const EvalMap& map, const SonarRing& ring,
     const std::uint64_t seed = options.seed * 1000003u + static_cast<std::uint64_t>(drawn);
     std::vector<Pose2> hypotheses = loop.hypotheses(loop.observe(truth, seed));
     if (hypotheses.size() < 2) continue;
-    outcomes.push_back(run_trial(loop, truth, std::move(hypotheses), seed));
+    try {
+      outcomes.push_back(run_trial(loop, truth, std::move(hypotheses), seed));
+    } catch (const Error&) {  // one trial's failure is a result, not the protocol's end
+      TrialOutcome failed;
+      failed.error = true;
+      failed.true_survived = true;  // nothing was ruled out
+      outcomes.push_back(failed);
+    }
     trial_done(static_cast<int>(outcomes.size()));
   }
   return summarize(map.name, drawn, outcomes);

@@ -279,7 +279,7 @@ std::vector<Pose2> EngineLoop::hypotheses(const Observation& observation) const 
                                               seeding.max_hypotheses + 1);
   std::vector<Pose2> poses;
   for (const TrackedHypothesis& seed : seed_hypotheses(global, seeding).hypotheses) {
-    if (on_free_cell(map_, seed.pose)) poses.push_back(seed.pose);
+    if (on_free_cell(space_.passable(), seed.pose)) poses.push_back(seed.pose);
   }
   return poses;
 }

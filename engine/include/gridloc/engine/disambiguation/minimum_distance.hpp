@@ -22,14 +22,18 @@ enum class DistanceStrategy { Weighted, Hybrid };
 struct MinimumDistanceOptions {
   SamplingAlgorithm algorithm = SamplingAlgorithm::Ual;
   DistanceStrategy strategy = DistanceStrategy::Hybrid;
-  int points = 250;        ///< random points per round (>= 1)
+  int points = 250;        ///< random points per round, in [1, 1e6]
   std::uint64_t seed = 1;  ///< of the random points
   /// Seed 002 step 8: rounds of sampling, the points doubled each round, before the robot
-  /// gives up for want of a useful point (>= 1).
+  /// gives up for want of a useful point (>= 1); at most 2^22 points a stop in all.
   int rounds = 8;
   int max_stops = 100;  ///< the most stops before giving up (>= 1)
   /// Threads scoring a round's points (OpenMP; the same plan for any number).
   int threads = 1;
+  /// Points nearer than this (m, along OI) to where the robot stands are not candidates: a
+  /// noisy sensor that ruled nothing out would otherwise sense again on the spot (0: seed
+  /// 002's perfect sensor, where that cannot happen).
+  double min_travel_m = 0.0;
 };
 
 /// Checks the options; throws gridloc::Error naming the field.
@@ -66,6 +70,9 @@ struct LocalizationStop {
   int useful = 0;               ///< of them, those with info > 0
   bool sampled_useful = false;  ///< UAL drew from U (false: COL, or U came out empty)
   std::vector<int> eliminated;  ///< hypotheses ruled out here (indices)
+  /// Every hypothesis's start pose as this stop was planned (refits move them): its route in
+  /// the world under hypothesis i is to_world(frame[i], route point).
+  std::vector<Pose2> frame;
 };
 
 struct MinimumDistancePlan {
@@ -87,7 +94,11 @@ MinimumDistancePlan localize_with_minimum_travel(const PlanningSpace& space,
                                                  const StopSensing& sense,
                                                  const MinimumDistanceOptions& options = {});
 
-/// The points of the whole path: the start, then every route's bends and stops.
+/// The points of the whole path: the start, then every route's bends and stops (start frame).
 std::vector<Eigen::Vector2d> whole_path(const MinimumDistancePlan& plan);
+
+/// The same path in the world under `hypothesis`, each route under the pose it was planned
+/// with (LocalizationStop::frame).
+std::vector<Eigen::Vector2d> world_path(const MinimumDistancePlan& plan, int hypothesis);
 
 }  // namespace gridloc

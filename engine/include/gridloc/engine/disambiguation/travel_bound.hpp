@@ -3,9 +3,10 @@
 /// - no localizing path is shorter than the way (inside OI) from the start to the nearest
 ///   point where sensing rules out at least one hypothesis (with two hypotheses any such
 ///   point resolves them: the bound is then the optimum itself);
-/// - when the truth is known (simulation), none is shorter than the way to the farthest of
-///   the nearest points that tell each wrong hypothesis from the truth (each must be ruled
-///   out somewhere): a tighter bound for three hypotheses and more.
+/// - when the truth is known (simulation), none is shorter than, for every wrong hypothesis,
+///   the way to the nearest point that tells it from the truth, measured inside the OI of that
+///   pair (until then their views agree, so the robot stayed where both maps are free): the
+///   largest of these is a tighter bound for three hypotheses and more.
 #include <Eigen/Core>
 #include <limits>
 #include <vector>
@@ -19,9 +20,9 @@ struct TravelBound {
   /// +infinity when no lattice point is informative.
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< that point (start frame)
-  /// With the truth known: the largest, over the wrong hypotheses, of the way to the nearest
-  /// lattice point where that hypothesis and the truth differ (+infinity when one never does;
-  /// NaN without the truth).
+  /// With the truth known: the largest, over the wrong hypotheses, of the way inside the
+  /// pair's OI to the nearest lattice point where that hypothesis and the truth differ
+  /// (+infinity when one never does; NaN without the truth).
   double pairwise = std::numeric_limits<double>::quiet_NaN();
   double step = 0.0;     ///< the lattice spacing used
   int points = 0;        ///< lattice points inside OI

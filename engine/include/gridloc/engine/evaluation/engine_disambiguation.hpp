@@ -33,8 +33,11 @@ struct EngineDisambiguationResult {
   int drawn = 0;                    ///< poses drawn to find them (the rest were unique)
   int truth_seeded = 0;             ///< trials whose hypotheses held the truth
   double true_survived_rate = 0.0;  ///< the truth stood to the end (of trials)
-  int wrong_answers = 0;            ///< resolved to a hypothesis that is not the truth
-  double resolved_rate = 0.0;       ///< one hypothesis left
+  int wrong_answers = 0;
+  /// Trials whose planning failed with a gridloc::Error (e.g. a refit that put the chair in
+  /// no cell it can reach under some hypothesis); counted in `trials`, never as resolved.
+  int errors = 0;              ///< resolved to a hypothesis that is not the truth
+  double resolved_rate = 0.0;  ///< one hypothesis left
   double mean_hypotheses = 0.0;
   double mean_path_length = 0.0;             ///< engine in the loop
   double mean_noise_free_path_length = 0.0;  ///< the same starts, perfect sensing and motion

@@ -31,8 +31,10 @@ struct EngineLoopOptions {
   /// firings within `drive` of the stop are fused into its observation there.
   double firing_every_m = 0.25;
   DriveWindowOptions drive;
-  MinimumDistanceOptions planner;  ///< COL or UAL, the strategy, the points
-  ScanEquivalence equivalence;     ///< the grid twin's predicted views
+  /// COL or UAL, the strategy, the points; the chair moves at least a firing's spacing to a
+  /// stop (a noisy reading that ruled nothing out is not taken again on the spot).
+  MinimumDistanceOptions planner{.min_travel_m = 0.25};
+  ScanEquivalence equivalence;  ///< the grid twin's predicted views
   /// Routes and stops keep the robot's centre this far from walls (the wheelchair's half
   /// width, 0.35 m, and 5 cm): GridSpaceOptions::clearance_m.
   double route_clearance_m = 0.4;
@@ -60,7 +62,7 @@ class EngineLoop {
   /// The observation at `truth`: one firing of the ring (or one scan) with realistic noise.
   Observation observe(const Pose2& truth, std::uint64_t seed) const;
   /// The look-alikes the global search leaves for `observation` (a HypothesisSet's seeds on
-  /// free cells), best first.
+  /// cells the chair can reach, GridPlanningSpace::passable), best first.
   std::vector<Pose2> hypotheses(const Observation& observation) const;
   /// The index of the hypothesis within truth_xy and truth_theta of `truth`, or -1.
   int true_hypothesis(const std::vector<Pose2>& hypotheses, const Pose2& truth) const;
