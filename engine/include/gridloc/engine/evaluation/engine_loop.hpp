@@ -32,8 +32,9 @@ struct EngineLoopOptions {
   double firing_every_m = 0.25;
   DriveWindowOptions drive;
   /// COL or UAL, the strategy, the points; the chair moves at least a firing's spacing to a
-  /// stop (a noisy reading that ruled nothing out is not taken again on the spot).
-  MinimumDistanceOptions planner{.min_travel_m = 0.25};
+  /// stop (a noisy reading that ruled nothing out is not taken again on the spot) and gives up
+  /// after 12 stops (a twin no drive tells apart would keep it going).
+  MinimumDistanceOptions planner{.max_stops = 12, .min_travel_m = 0.25};
   ScanEquivalence equivalence;  ///< the grid twin's predicted views
   /// Routes and stops keep the robot's centre this far from walls (the wheelchair's half
   /// width, 0.35 m, and 5 cm): GridSpaceOptions::clearance_m.
