@@ -174,7 +174,17 @@ void validate(const DisambiguationProtocolOptions& options) {
     throw Error("disambiguation protocol: points, ranges, algorithms and strategies need a value");
   }
   for (const int points : options.points) {
-    if (points < 1) throw Error("disambiguation protocol: points must be >= 1");
+    if (points < 1 || points > 1000000) {
+      throw Error("disambiguation protocol: points must be in [1, 1000000]");
+    }
+  }
+  const double runs = static_cast<double>(options.environments) * options.starts * options.repeats *
+                      static_cast<double>(options.points.size()) *
+                      static_cast<double>(options.ranges.size() * options.algorithms.size() *
+                                          options.strategies.size());
+  if (runs > 1e8) {
+    throw Error("disambiguation protocol: " + std::to_string(static_cast<long long>(runs)) +
+                " runs (environments x starts x repeats x configurations) is more than 1e8");
   }
   for (const double range : options.ranges) {
     if (!(range > 0.0)) throw Error("disambiguation protocol: a range must be > 0");

@@ -112,9 +112,11 @@ EngineDisambiguationResult run_map(const EvalMap& map, const SonarRing& ring,
 }  // namespace
 
 void validate(const EngineDisambiguationOptions& options) {
-  if (options.trials < 1) throw Error("engine disambiguation: trials must be >= 1");
-  if (options.attempts_per_trial < 1) {
-    throw Error("engine disambiguation: attempts_per_trial must be >= 1");
+  if (options.trials < 1 || options.trials > 1000000) {
+    throw Error("engine disambiguation: trials must be in [1, 1000000]");
+  }
+  if (options.attempts_per_trial < 1 || options.attempts_per_trial > 1000) {
+    throw Error("engine disambiguation: attempts_per_trial must be in [1, 1000]");
   }
   validate(options.loop);
 }
