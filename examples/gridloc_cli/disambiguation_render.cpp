@@ -225,9 +225,9 @@ void polyline(cv::Mat& img, const std::vector<Eigen::Vector2d>& points, const Pa
   cv::polylines(img, Contours{line}, false, colour, thickness, cv::LINE_AA, plot::kShift);
 }
 
-void draw_segments(cv::Mat& img, const std::vector<Segment>& segments, const Panel& panel,
+void draw_segments(cv::Mat& img, const std::vector<PlanarSegment>& segments, const Panel& panel,
                    const cv::Scalar& colour, int thickness) {
-  for (const Segment& s : segments) {
+  for (const PlanarSegment& s : segments) {
     if (s.a.allFinite() && s.b.allFinite()) {
       plot::line(img, panel.at(s.a), panel.at(s.b), colour, thickness);
     }

@@ -7,9 +7,9 @@
 namespace gridloc {
 namespace {
 
-RangeView view_of(std::initializer_list<Segment> segments) {
+RangeView view_of(std::initializer_list<PlanarSegment> segments) {
   RangeView view;
-  for (const Segment& segment : segments) view.pieces.push_back({segment, true, false});
+  for (const PlanarSegment& segment : segments) view.pieces.push_back({segment, true, false});
   return view;
 }
 

@@ -22,21 +22,21 @@ Polygon clockwise(Polygon ring) {
   return ring;
 }
 
-double total_length(const std::vector<Segment>& pieces) {
+double total_length(const std::vector<PlanarSegment>& pieces) {
   double length = 0.0;
-  for (const Segment& piece : pieces) length += (piece.b - piece.a).norm();
+  for (const PlanarSegment& piece : pieces) length += (piece.b - piece.a).norm();
   return length;
 }
 
-double distance_to_segment(const Segment& s, const Eigen::Vector2d& p) {
+double distance_to_segment(const PlanarSegment& s, const Eigen::Vector2d& p) {
   const Eigen::Vector2d d = s.b - s.a;
   const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
   return (s.a + t * d - p).norm();
 }
 
 /// Whether some piece passes through p.
-bool on_some_piece(const std::vector<Segment>& pieces, const Eigen::Vector2d& p) {
-  for (const Segment& piece : pieces) {
+bool on_some_piece(const std::vector<PlanarSegment>& pieces, const Eigen::Vector2d& p) {
+  for (const PlanarSegment& piece : pieces) {
     if (distance_to_segment(piece, p) < 1e-9) return true;
   }
   return false;
@@ -49,7 +49,8 @@ double oi_perimeter(const Area& oi) {
 /// Every piece agrees with a brute-force look just beyond its midpoint.
 void expect_pieces_classified(const Overlay& overlay) {
   for (int internal = 0; internal < 2; ++internal) {
-    for (const Segment& piece : internal ? overlay.internal_edges : overlay.silhouette_edges) {
+    for (const PlanarSegment& piece :
+         internal ? overlay.internal_edges : overlay.silhouette_edges) {
       if ((piece.b - piece.a).norm() < 1e-6) continue;  // a sliver of Boost's rescaling
       const Eigen::Vector2d d = (piece.b - piece.a).normalized();
       const Eigen::Vector2d probe =
@@ -321,16 +322,17 @@ TEST(Overlay, MatchesTheCellsOnRandomRooms) {
 /// Points well clear of every map edge: in the intersection exactly when in every map.
 /// Returns how many sampled points were in every map.
 int expect_intersection_by_sampling(const Overlay& overlay, std::mt19937& rng) {
-  std::vector<Segment> edges;
+  std::vector<PlanarSegment> edges;
   for (const Area& map : overlay.maps) {
-    for (const Segment& edge : area_edges(map)) edges.push_back(edge);
+    for (const PlanarSegment& edge : area_edges(map)) edges.push_back(edge);
   }
   std::uniform_real_distribution<double> coordinate(-8, 8);  // any start sees the room here
   int checked = 0;
   for (int n = 0; n < 400; ++n) {
     const Eigen::Vector2d p(coordinate(rng), coordinate(rng));
     double clearance = 1e9;
-    for (const Segment& edge : edges) clearance = std::min(clearance, distance_to_segment(edge, p));
+    for (const PlanarSegment& edge : edges)
+      clearance = std::min(clearance, distance_to_segment(edge, p));
     if (clearance < 1e-6) continue;
     bool in_all = true;
     for (const Area& map : overlay.maps) in_all = in_all && covers(map, p);

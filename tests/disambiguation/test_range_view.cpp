@@ -260,7 +260,7 @@ TEST(VisibilityPolygon, ViewpointsJustOffAWallStayFinite) {
   for (const int columns : {12, 40}) {
     const Area area = test::random_rectilinear_room(rng, columns);
     int checked = 0;
-    for (const Segment& edge : area_edges(area)) {
+    for (const PlanarSegment& edge : area_edges(area)) {
       const Eigen::Vector2d along = (edge.b - edge.a).normalized();
       for (int k = 0; k < 16; ++k) {  // as useful_region spreads its samples
         const Eigen::Vector2d viewpoint = edge.a + (k + 0.5) / 16 * (edge.b - edge.a) +

@@ -21,10 +21,11 @@ bool region_holds(const Region& region, const Eigen::Vector2d& p) {
 // An L-shaped oi: the lower arm [0, 4] x [0, 1], the upper arm [0, 1] x [0, 4]; the internal
 // edge is the right end of the lower arm, x = 4, y in [0, 1].
 const Area kRoom{{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}, {}};
-const Segment kEdge{{4, 0}, {4, 1}};
+const PlanarSegment kEdge{{4, 0}, {4, 1}};
 
 TEST(UsefulRegion, UnlimitedRangeHoldsWhatSeesTheEdgeAndNotWhatTheCornerHides) {
-  for (const Segment& edge : {kEdge, Segment{kEdge.b, kEdge.a}}) {  // either orientation
+  for (const PlanarSegment& edge :
+       {kEdge, PlanarSegment{kEdge.b, kEdge.a}}) {  // either orientation
     const Region useful = useful_region(kRoom, {edge}, kUnlimitedRange);
     ASSERT_FALSE(useful.empty());
     EXPECT_TRUE(region_holds(useful, {3.9, 0.5}));
@@ -54,7 +55,7 @@ TEST(UsefulRegion, TwoEdgesGiveTheUnionAndAHoleBlocksTheView) {
   // A room [0, 6] x [0, 2] with a pillar; internal edges at both ends.
   const Area room{test::rectangle(0, 0, 6, 2),
                   {test::reversed(test::rectangle(2.5, 0.5, 3.5, 1.5))}};
-  const std::vector<Segment> edges{{{0, 2}, {0, 0}}, {{6, 0}, {6, 2}}};
+  const std::vector<PlanarSegment> edges{{{0, 2}, {0, 0}}, {{6, 0}, {6, 2}}};
   const Region useful = useful_region(room, edges, 1.0);
   EXPECT_TRUE(region_holds(useful, {0.5, 1.0}));
   EXPECT_TRUE(region_holds(useful, {5.5, 1.0}));
@@ -67,7 +68,8 @@ TEST(UsefulRegion, TwoEdgesGiveTheUnionAndAHoleBlocksTheView) {
 
 /// Whether p sees some point of the edge no farther than `range`: brute force over 400 points
 /// along it and the edge-rectangle's width.
-bool sees_edge(const Area& area, const Eigen::Vector2d& p, const Segment& edge, double range) {
+bool sees_edge(const Area& area, const Eigen::Vector2d& p, const PlanarSegment& edge,
+               double range) {
   const Eigen::Vector2d along = (edge.b - edge.a).normalized();
   const double off_line = std::abs(test::cross2(along, p - edge.a));
   if (off_line > range + 1e-6) return false;
@@ -86,7 +88,7 @@ TEST(UsefulRegion, EveryPointOfTheRegionSeesAnInternalEdge) {
   for (int room = 0; room < 8; ++room) {
     const Area oi = room < 4 ? test::random_star_room(rng) : test::random_rectilinear_room(rng, 12);
     const std::size_t i = test::uniform_int(rng, 0, static_cast<int>(oi.outer.size()) - 1);
-    const Segment edge{oi.outer[i], oi.outer[(i + 1) % oi.outer.size()]};
+    const PlanarSegment edge{oi.outer[i], oi.outer[(i + 1) % oi.outer.size()]};
     const double range = room % 2 ? kUnlimitedRange : test::uniform_real(rng, 0.5, 3.0);
     const Region useful = useful_region(oi, {edge}, range);
     ASSERT_FALSE(useful.empty());
@@ -107,7 +109,7 @@ TEST(UsefulRegion, EveryPointOfTheRegionSeesAnInternalEdge) {
 TEST(UsefulRegion, BadInputThrows) {
   EXPECT_THROW(useful_region(kRoom, {kEdge}, 0.0), Error);
   EXPECT_THROW(useful_region(kRoom, {kEdge}, 1.0, 0), Error);
-  EXPECT_THROW(useful_region(kRoom, {Segment{{2, 2}, {3, 3}}}, 1.0), Error);
+  EXPECT_THROW(useful_region(kRoom, {PlanarSegment{{2, 2}, {3, 3}}}, 1.0), Error);
   EXPECT_TRUE(useful_region(kRoom, {}, 1.0).empty());
 }
 

@@ -42,7 +42,7 @@ inline double ray_to_segment(const Eigen::Vector2d& origin, const Eigen::Vector2
 /// The nearest wall of the area along the ray, by testing every edge.
 inline double cast_ray(const Area& area, const Eigen::Vector2d& origin, const Eigen::Vector2d& u) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const Segment& edge : area_edges(area)) {
+  for (const PlanarSegment& edge : area_edges(area)) {
     nearest = std::min(nearest, ray_to_segment(origin, u, edge.a, edge.b));
   }
   return nearest;
@@ -123,7 +123,7 @@ inline Eigen::Vector2d random_inside(std::mt19937& rng, const Area& area, double
     const Eigen::Vector2d p(uniform_real(rng, lo.x(), hi.x()), uniform_real(rng, lo.y(), hi.y()));
     if (!strictly_inside(area, p)) continue;
     bool clear = true;
-    for (const Segment& e : area_edges(area)) {
+    for (const PlanarSegment& e : area_edges(area)) {
       clear = clear && point_segment_distance(p, e.a, e.b) > clearance;
     }
     if (clear) return p;

@@ -23,7 +23,7 @@ constexpr double kCollinear = 1e-12;  ///< |sin| below which three points count 
 /// neighbours along its ring, whether its start is a reflex vertex, and a Boost polygon for
 /// closed point-in-area tests.
 struct AreaIndex {
-  std::vector<Segment> edges;
+  std::vector<PlanarSegment> edges;
   std::vector<std::size_t> next_edge, previous_edge;
   std::vector<bool> starts_reflex;
   bgw::BoostPolygon polygon;
@@ -55,20 +55,21 @@ AreaIndex index_area(const Area& area) {
   link_ring(area.outer.size());
   for (const Polygon& hole : area.holes) link_ring(hole.size());
   for (std::size_t e = 0; e < index.edges.size(); ++e) {
-    const Segment& edge = index.edges[e];
+    const PlanarSegment& edge = index.edges[e];
     index.starts_reflex.push_back(side(index.edges[index.previous_edge[e]].a, edge.a, edge.b) < 0);
   }
   return index;
 }
 
-bool boxes_apart(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Segment& edge) {
+bool boxes_apart(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const PlanarSegment& edge) {
   return std::max(a.x(), b.x()) < std::min(edge.a.x(), edge.b.x()) ||
          std::min(a.x(), b.x()) > std::max(edge.a.x(), edge.b.x()) ||
          std::max(a.y(), b.y()) < std::min(edge.a.y(), edge.b.y()) ||
          std::min(a.y(), b.y()) > std::max(edge.a.y(), edge.b.y());
 }
 
-bool crosses_properly(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Segment& edge) {
+bool crosses_properly(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                      const PlanarSegment& edge) {
   return side(a, b, edge.a) * side(a, b, edge.b) < 0 &&
          side(edge.a, edge.b, a) * side(edge.a, edge.b, b) < 0;
 }
@@ -93,7 +94,7 @@ bool split_at_vertices(const AreaIndex& index, const Eigen::Vector2d& a, const E
   const double length2 = direction.squaredNorm();
   splits = {{0.0, -1}, {1.0, -1}};
   for (std::size_t e = 0; e < index.edges.size(); ++e) {  // each vertex starts one edge
-    const Segment& edge = index.edges[e];
+    const PlanarSegment& edge = index.edges[e];
     if (boxes_apart(a, b, edge)) continue;
     if (crosses_properly(a, b, edge)) return false;
     if (side(a, b, edge.a) != 0) continue;

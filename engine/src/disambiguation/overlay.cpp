@@ -115,21 +115,21 @@ std::size_t component_holding(const bgw::MultiPolygon& intersection,
               point_text(anchor));
 }
 
-std::vector<Segment> all_map_edges(const std::vector<Area>& maps) {
-  std::vector<Segment> edges;
+std::vector<PlanarSegment> all_map_edges(const std::vector<Area>& maps) {
+  std::vector<PlanarSegment> edges;
   for (const Area& map : maps) {
-    const std::vector<Segment> map_edges = area_edges(map);
+    const std::vector<PlanarSegment> map_edges = area_edges(map);
     edges.insert(edges.end(), map_edges.begin(), map_edges.end());
   }
   return edges;
 }
 
-bgw::Box segment_box(const Segment& segment) {
+bgw::Box segment_box(const PlanarSegment& segment) {
   return {{std::min(segment.a.x(), segment.b.x()), std::min(segment.a.y(), segment.b.y())},
           {std::max(segment.a.x(), segment.b.x()), std::max(segment.a.y(), segment.b.y())}};
 }
 
-EdgeTree edge_tree(const std::vector<Segment>& edges) {
+EdgeTree edge_tree(const std::vector<PlanarSegment>& edges) {
   std::vector<std::pair<bgw::Box, std::size_t>> values;
   values.reserve(edges.size());
   for (std::size_t i = 0; i < edges.size(); ++i) values.emplace_back(segment_box(edges[i]), i);
@@ -138,7 +138,8 @@ EdgeTree edge_tree(const std::vector<Segment>& edges) {
 
 /// Where along `edge` (parameter 0 at a, 1 at b) the map edges cross or touch it, sorted,
 /// with 0 and 1.
-std::vector<double> split_parameters(const Segment& edge, const std::vector<Segment>& map_edges,
+std::vector<double> split_parameters(const PlanarSegment& edge,
+                                     const std::vector<PlanarSegment>& map_edges,
                                      const EdgeTree& tree) {
   std::vector<double> parameters{0.0, 1.0};
   const Eigen::Vector2d direction = edge.b - edge.a;
@@ -146,7 +147,7 @@ std::vector<double> split_parameters(const Segment& edge, const std::vector<Segm
   const bgw::BoostSegment edge_segment{bgw::to_boost(edge.a), bgw::to_boost(edge.b)};
   std::vector<bgw::Point> crossings;
   for (auto it = tree.qbegin(bgi::intersects(segment_box(edge))); it != tree.qend(); ++it) {
-    const Segment& other = map_edges[it->second];
+    const PlanarSegment& other = map_edges[it->second];
     crossings.clear();
     bg::intersection(edge_segment,
                      bgw::BoostSegment{bgw::to_boost(other.a), bgw::to_boost(other.b)}, crossings);
@@ -169,14 +170,15 @@ bool some_map_covers(const std::vector<BoostMap>& maps, const Eigen::Vector2d& p
 
 /// seed 002 §IV-D, Fig. 5: each piece of OI's boundary is internal when some map has free
 /// space just beyond it (a probe offset along the outward normal), else on the silhouette.
-void classify_pieces(const Segment& edge, const std::vector<double>& parameters,
+void classify_pieces(const PlanarSegment& edge, const std::vector<double>& parameters,
                      const std::vector<BoostMap>& maps, double probe_offset, Overlay& overlay) {
   const Eigen::Vector2d direction = edge.b - edge.a;
   const double length = direction.norm();
   const Eigen::Vector2d outward(direction.y() / length, -direction.x() / length);  // OI on left
   for (std::size_t i = 0; i + 1 < parameters.size(); ++i) {
     if ((parameters[i + 1] - parameters[i]) * length < kMinPieceLength) continue;
-    const Segment piece{edge.a + parameters[i] * direction, edge.a + parameters[i + 1] * direction};
+    const PlanarSegment piece{edge.a + parameters[i] * direction,
+                              edge.a + parameters[i + 1] * direction};
     const Eigen::Vector2d probe = 0.5 * (piece.a + piece.b) + probe_offset * outward;
     (some_map_covers(maps, probe) ? overlay.internal_edges : overlay.silhouette_edges)
         .push_back(piece);
@@ -184,9 +186,9 @@ void classify_pieces(const Segment& edge, const std::vector<double>& parameters,
 }
 
 void split_oi_boundary(const std::vector<BoostMap>& maps, double probe_offset, Overlay& overlay) {
-  const std::vector<Segment> map_edges = all_map_edges(overlay.maps);
+  const std::vector<PlanarSegment> map_edges = all_map_edges(overlay.maps);
   const EdgeTree tree = edge_tree(map_edges);
-  for (const Segment& edge : area_edges(overlay.oi)) {
+  for (const PlanarSegment& edge : area_edges(overlay.oi)) {
     if ((edge.b - edge.a).norm() < kMinPieceLength) continue;
     classify_pieces(edge, split_parameters(edge, map_edges, tree), maps, probe_offset, overlay);
   }

@@ -28,7 +28,7 @@ Polygon ring_to_start_frame(const Pose2& start, const Polygon& ring) {
   return moved;
 }
 
-void append_ring_edges(const Polygon& ring, std::vector<Segment>& edges) {
+void append_ring_edges(const Polygon& ring, std::vector<PlanarSegment>& edges) {
   for (std::size_t i = 0; i < ring.size(); ++i) {
     edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
   }
@@ -42,8 +42,8 @@ Area to_start_frame(const Pose2& start, const Area& area) {
   return moved;
 }
 
-std::vector<Segment> area_edges(const Area& area) {
-  std::vector<Segment> edges;
+std::vector<PlanarSegment> area_edges(const Area& area) {
+  std::vector<PlanarSegment> edges;
   append_ring_edges(area.outer, edges);
   for (const Polygon& hole : area.holes) append_ring_edges(hole, edges);
   return edges;

@@ -69,7 +69,7 @@ Region to_region(const BgMultiPolygon& multi) {
 
 /// The unit normal of the edge pointing into oi: the side whose point 1e-7 off the edge's
 /// midpoint lies in oi.
-Eigen::Vector2d inward_normal(const BgPolygon& oi, const Segment& edge, std::size_t index) {
+Eigen::Vector2d inward_normal(const BgPolygon& oi, const PlanarSegment& edge, std::size_t index) {
   const Eigen::Vector2d direction = edge.b - edge.a;
   if (!(direction.norm() > 0.0)) {
     throw Error("useful_region: internal edge " + std::to_string(index) + " has zero length");
@@ -84,7 +84,7 @@ Eigen::Vector2d inward_normal(const BgPolygon& oi, const Segment& edge, std::siz
 
 /// Seed 002 Fig. 6, inner approximation: the union of the visibility polygons of points
 /// spread along the edge (interval midpoints), pulled into oi along `inward`.
-BgMultiPolygon weak_visibility(const Area& oi, const BgPolygon& oi_bg, const Segment& edge,
+BgMultiPolygon weak_visibility(const Area& oi, const BgPolygon& oi_bg, const PlanarSegment& edge,
                                const Eigen::Vector2d& inward, double range, int samples) {
   BgMultiPolygon seen;
   for (int k = 0; k < samples; ++k) {
@@ -102,7 +102,7 @@ BgMultiPolygon weak_visibility(const Area& oi, const BgPolygon& oi_bg, const Seg
 
 /// Seed 002 §IV-D step 6's "infinitely long rectangle": along the edge's line, `length` to
 /// each side of its midpoint, `width` deep on oi's side.
-BgPolygon edge_rectangle(const Segment& edge, const Eigen::Vector2d& inward, double length,
+BgPolygon edge_rectangle(const PlanarSegment& edge, const Eigen::Vector2d& inward, double length,
                          double width) {
   const Eigen::Vector2d along = (edge.b - edge.a).normalized();
   const Eigen::Vector2d middle = 0.5 * (edge.a + edge.b);
@@ -129,14 +129,14 @@ void check_useful_region_input(const Area& oi, double range, int samples_per_edg
 
 }  // namespace
 
-Region useful_region(const Area& oi, const std::vector<Segment>& internal_edges, double range,
+Region useful_region(const Area& oi, const std::vector<PlanarSegment>& internal_edges, double range,
                      int samples_per_edge) {
   check_useful_region_input(oi, range, samples_per_edge);
   const BgPolygon oi_bg = to_bg(oi);
   const double length = 2.0 * bounding_box_diagonal(oi);
   BgMultiPolygon useful;
   for (std::size_t i = 0; i < internal_edges.size(); ++i) {
-    const Segment& edge = internal_edges[i];
+    const PlanarSegment& edge = internal_edges[i];
     const Eigen::Vector2d inward = inward_normal(oi_bg, edge, i);
     BgMultiPolygon seen = weak_visibility(oi, oi_bg, edge, inward, range, samples_per_edge);
     if (std::isfinite(range)) {  // seed 002 §IV-D step 6: clipped by a factor d

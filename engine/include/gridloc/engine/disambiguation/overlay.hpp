@@ -21,8 +21,8 @@ struct Overlay {
   /// edge's direction (OI on its left) and is classified by a probe 1e-7 x scale beyond its
   /// midpoint along the outward normal (scale: the larger side of free_world's bounding box,
   /// at least 1), covered by some map or not; pieces under 1e-9 long are dropped.
-  std::vector<Segment> internal_edges;
-  std::vector<Segment> silhouette_edges;
+  std::vector<PlanarSegment> internal_edges;
+  std::vector<PlanarSegment> silhouette_edges;
 };
 
 /// Builds the overlay; `anchor` (start frame) is a point of the closed OI — the start

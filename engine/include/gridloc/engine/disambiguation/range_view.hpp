@@ -16,7 +16,7 @@ namespace gridloc {
 struct ViewPiece {
   /// In the viewer's frame: relative to the viewpoint, axes turned by -heading. As seen from
   /// the viewpoint, a comes before b counter-clockwise.
-  Segment segment;
+  PlanarSegment segment;
   bool a_is_vertex = false;  ///< a is a vertex of the area (not a cut by occlusion or range)
   bool b_is_vertex = false;
 };
@@ -53,7 +53,7 @@ Polygon visibility_polygon(const Area& area, const Eigen::Vector2d& viewpoint, d
 /// rectangle of width `range` along its edge on oi's side (unclipped for kUnlimitedRange).
 /// A weak visibility polygon is the union of the visibility polygons of `samples_per_edge`
 /// points spread along the edge, pulled 1e-7 into oi (an inner approximation).
-Region useful_region(const Area& oi, const std::vector<Segment>& internal_edges, double range,
+Region useful_region(const Area& oi, const std::vector<PlanarSegment>& internal_edges, double range,
                      int samples_per_edge = 16);
 
 }  // namespace gridloc

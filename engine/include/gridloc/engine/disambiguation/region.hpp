@@ -23,7 +23,7 @@ struct Area {
 
 using Region = std::vector<Area>;  ///< disjoint areas
 
-struct Segment {
+struct PlanarSegment {
   Eigen::Vector2d a = Eigen::Vector2d::Zero();
   Eigen::Vector2d b = Eigen::Vector2d::Zero();
 };
@@ -42,7 +42,7 @@ Eigen::Vector2d to_start_frame(const Pose2& start, const Eigen::Vector2d& world)
 Area to_start_frame(const Pose2& start, const Area& area);
 
 /// Every edge of the area, outer ring then holes, with the area on the left.
-std::vector<Segment> area_edges(const Area& area);
+std::vector<PlanarSegment> area_edges(const Area& area);
 
 /// The area in square units (outer minus holes).
 double area_size(const Area& area);
