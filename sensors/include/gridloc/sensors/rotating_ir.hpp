@@ -17,11 +17,11 @@
 namespace gridloc {
 
 struct IrSensorOptions {
-  int readings = 360;            ///< per turn, evenly spaced from angle -pi (>= 8)
-  double min_range_m = 0.09;     ///< closer walls read this (the calibration's near end)
-  double max_range_m = 0.30;     ///< truncation: farther walls (and no wall) read this
-  bool noise = true;             ///< Gaussian range noise of ir_range_sigma()
-  int smoothing_half_window = 5; ///< moving average over +-this many readings (0: none)
+  int readings = 360;             ///< per turn, evenly spaced from angle -pi (>= 8)
+  double min_range_m = 0.09;      ///< closer walls read this (the calibration's near end)
+  double max_range_m = 0.30;      ///< truncation: farther walls (and no wall) read this
+  bool noise = true;              ///< Gaussian range noise of ir_range_sigma()
+  int smoothing_half_window = 5;  ///< moving average over +-this many readings (0: none)
 };
 
 /// Checks the options; throws gridloc::Error naming the field.
@@ -29,14 +29,17 @@ void validate(const IrSensorOptions& options);
 
 /// The standard deviation (m) of one reading at true range r (m): Table II's 95 % interval
 /// widths divided by 2 x 1.96, linear between its ranges, the first value below 11.4 cm and
-/// the last slope continued beyond 39.8 cm.
+/// the last slope continued beyond 39.8 cm. Throws gridloc::Error for a NaN range.
 double ir_range_sigma(double range_m);
 
 /// A simulated scan from world pose `pose`: exact ray casting on the map's walls (polygon) or
-/// its Occupied cells (occupancy; Unknown transparent), then noise (seeded), clamping to
-/// [min_range_m, max_range_m] and smoothing. Reading k looks at angle -pi + 2 pi k / readings
-/// (robot frame); max_range of the scan is max_range_m. Throws gridloc::Error for bad options
-/// or a pose that is not finite.
+/// its Occupied cells (occupancy; Unknown transparent, leaving the map is no return), then
+/// noise, clamping and smoothing. A true range >= max_range_m reads exactly max_range_m
+/// (saturated, no noise); a nearer wall reads true range + ir_range_sigma(true range) x one
+/// Gaussian of Rng(seed) (one drawn per reading, in order), clamped to
+/// [min_range_m, max_range_m - 1e-6] so that it stays a return. Reading k looks at angle
+/// -pi + 2 pi k / readings (robot frame); max_range of the scan is max_range_m. Throws
+/// gridloc::Error for bad options or a pose that is not finite.
 RangeScan simulate_ir_scan(const PolygonMap& map, const Pose2& pose, const IrSensorOptions& options,
                            std::uint64_t seed);
 RangeScan simulate_ir_scan(const OccupancyMap& map, const Pose2& pose,
@@ -44,15 +47,22 @@ RangeScan simulate_ir_scan(const OccupancyMap& map, const Pose2& pose,
 
 /// The thesis's moving-average filter: each return replaced by the mean of itself and the
 /// returns among the half_window readings before and after it (around the turn: the scan is
-/// circular); saturated readings (>= max_range) stay saturated and are not averaged in.
+/// circular); saturated readings (>= max_range) stay saturated and are not averaged in. A
+/// window of 2 half_window + 1 >= the scan's size is the whole scan (each return once); 0
+/// returns the scan as it is. Throws gridloc::Error for half_window < 0 or angles and ranges
+/// of different sizes.
 RangeScan smooth_ir_scan(const RangeScan& scan, int half_window);
 
 /// Reads a real scan from a plain CSV: one reading per line, `angle,range`; a first line
 /// `angle_deg,range_cm` (or any of angle_deg/angle_rad and range_m/range_cm) names the units,
-/// otherwise radians and metres. Ranges at or beyond options.max_range_m (and below
-/// min_range_m) are clamped like the simulator's; then smoothed with the options' window.
-/// Throws gridloc::Error naming the file and line for a missing or oversized file, a bad
-/// number, a NaN or negative range, or fewer than 8 readings.
+/// otherwise radians and metres. `#` starts a comment; blank lines are skipped. Ranges are
+/// clamped like the simulator's (>= options.max_range_m, inf included: saturated at
+/// max_range_m; others into [min_range_m, max_range_m - 1e-6]); then smoothed with the
+/// options' window. Throws gridloc::Error for bad options, naming the file for a missing,
+/// unreadable or oversized file (check_input_file) or fewer than 8 readings, and the file and
+/// line for a line that is not two fields, a bad header, a bad or non-finite angle, a range
+/// that is not a number, NaN or negative, a line over 64 KiB, or more than limits.max_beams
+/// readings.
 RangeScan load_ir_scan_csv(const std::string& path, const IrSensorOptions& options,
                            const ResourceLimits& limits = {});
 
