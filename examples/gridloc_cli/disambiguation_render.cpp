@@ -4,8 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <functional>
-#include <limits>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -19,8 +17,14 @@
 namespace gridloc::cli {
 namespace {
 
+using plot::Box;
+using plot::Contours;
+using plot::fill_rings;
+using plot::filled;
+using plot::outline_rings;
+using plot::stroke;
 using plot::View;
-using Contours = std::vector<std::vector<cv::Point>>;
+using plot::wrap;
 
 constexpr int kLeft = 72;        // room for the y tick labels, left of either panel
 constexpr int kRight = 28;       // the right frame clear of the canvas
@@ -47,7 +51,6 @@ const cv::Scalar kSample(125, 125, 125);      // random points: grey
 const cv::Scalar kPath(30, 30, 150);          // the path in the start frame: dark red
 const cv::Scalar kBound(170, 40, 120);        // the lower bound's point: purple
 const cv::Scalar kOutside(205, 205, 205);     // outside the map, obstacles
-const cv::Scalar kSwatchEdge(150, 150, 150);  // legend boxes
 
 /// Hypothesis i's colour: ten dark, distinct hues, none near OI's orange edges, U's green,
 /// the path's dark red or the truth's magenta; they cycle beyond ten.
@@ -67,20 +70,6 @@ cv::Scalar hypothesis_colour(int i) {
   return palette[static_cast<std::size_t>(i) % palette.size()];
 }
 
-/// An axis-aligned box of the finite points added to it.
-struct Box {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
-
-  void add(const Eigen::Vector2d& p) {
-    if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  }
-  void add(const std::vector<Eigen::Vector2d>& points) {
-    for (const Eigen::Vector2d& p : points) add(p);
-  }
-  bool empty() const { return !(lo.x() <= hi.x()); }
-};
-
 /// A plot area and the round world offset subtracted from the coordinates it shows.
 struct Panel {
   View view;
@@ -99,17 +88,9 @@ struct Panel {
   }
 };
 
-/// The box grown by a margin on each side; a box under 1 cm (or empty: the origin) becomes a
-/// 1 m square about its centre.
-Box padded(Box box) {
-  if (box.empty()) box.add(Eigen::Vector2d::Zero());
-  const double side = (box.hi - box.lo).maxCoeff();
-  if (side < 0.01) {
-    const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
-    return {centre - Eigen::Vector2d::Constant(0.5), centre + Eigen::Vector2d::Constant(0.5)};
-  }
-  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(kMarginFraction * side);
-  return {box.lo - margin, box.hi + margin};
+/// The box grown by kMarginFraction of its longer side on each side.
+Box padded(const Box& box) {
+  return plot::padded(box, kMarginFraction);
 }
 
 /// Sets a round offset when the coordinates are large beside the box (far from the origin),
@@ -195,23 +176,6 @@ Contours area_contours(const Area& area, const Panel& panel) {
   Contours rings{contour(area.outer, panel)};
   for (const Polygon& hole : area.holes) rings.push_back(contour(hole, panel));
   return rings;
-}
-
-/// The rings that can be drawn (a ring with a non-finite vertex is left out).
-Contours drawable(Contours rings) {
-  std::erase_if(rings, [](const std::vector<cv::Point>& ring) { return ring.empty(); });
-  return rings;
-}
-
-/// Fills the rings together (even-odd: holes stay unfilled).
-void fill_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour) {
-  const Contours kept = drawable(rings);
-  if (!kept.empty()) cv::fillPoly(img, kept, colour, cv::LINE_AA, plot::kShift);
-}
-
-void outline_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour, int thickness) {
-  const Contours kept = drawable(rings);
-  if (!kept.empty()) cv::polylines(img, kept, true, colour, thickness, cv::LINE_AA, plot::kShift);
 }
 
 /// An open polyline through the finite points.
@@ -413,32 +377,6 @@ void paint_world_panel(cv::Mat& img, const DisambiguationPicture& picture, const
   paint_hypotheses(area, picture, local);
 }
 
-/// Greedy word wrap of `s` into lines at most `width` px wide at `scale`.
-std::vector<std::string> wrap(const std::string& s, double scale, int thickness, int width) {
-  std::vector<std::string> lines;
-  std::string line, word;
-  const auto flush_word = [&] {
-    if (word.empty()) return;
-    const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && plot::text_size(longer, scale, thickness).width > width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = longer;
-    }
-    word.clear();
-  };
-  for (const char c : s) {
-    if (c == ' ')
-      flush_word();
-    else
-      word += c;
-  }
-  flush_word();
-  if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
 /// The axis labels of a panel: "x (m)", or with the offset subtracted from large coordinates
 /// "x - 1.5e+09 (m)", written with the significant digits of a multiple of 10^offset_power.
 std::pair<std::string, std::string> axis_labels(const Panel& panel) {
@@ -498,29 +436,6 @@ int heading_lines(const std::vector<std::string>& heading, int width) {
     n += static_cast<int>(wrap(line, plot::kTickScale, 1, width - kHeadingClear).size());
   }
   return n;
-}
-
-/// A legend swatch: a 24 x 14 px box filled by `fill`.
-plot::LegendItem swatch(std::function<void(cv::Mat&, const cv::Rect&)> fill, std::string label) {
-  return {[fill](cv::Mat& m, const cv::Point2d& p) {
-            const cv::Rect r(static_cast<int>(p.x) + 2, static_cast<int>(p.y) - 7, 24, 14);
-            fill(m, r);
-            cv::rectangle(m, r, kSwatchEdge, 1);
-          },
-          std::move(label)};
-}
-
-/// A legend swatch of one colour.
-plot::LegendItem filled(const cv::Scalar& colour, std::string label) {
-  return swatch([colour](cv::Mat& m, const cv::Rect& r) { m(r) = colour; }, std::move(label));
-}
-
-/// A legend line 26 px long.
-plot::LegendItem stroke(const cv::Scalar& colour, int thickness, std::string label) {
-  return {[colour, thickness](cv::Mat& m, const cv::Point2d& p) {
-            plot::line(m, p, p + cv::Point2d(26, 0), colour, thickness);
-          },
-          std::move(label)};
 }
 
 /// The left panel's items.
@@ -615,24 +530,11 @@ Layout make_layout(const DisambiguationPicture& picture) {
   layout.caption = wrap(picture.caption, plot::kTickScale, 1, layout.width - 24);
   const int lines = std::max(heading_lines(start_heading(picture), start_w),
                              heading_lines(world_heading(picture), world_w));
-  const int top = 24 + 28 * static_cast<int>(layout.title.size()) +
-                  20 * static_cast<int>(layout.caption.size()) + 20 * lines + 4;
+  const int top =
+      plot::title_block_bottom(layout.title.size(), layout.caption.size()) + 20 * lines + 4;
   layout.start.view.origin = {kLeft, top};
   layout.world.view.origin = {kLeft + start_w + kLeft, top};
   return layout;
-}
-
-/// The title lines, then the caption lines, from the top left.
-void draw_title(cv::Mat& img, const Layout& layout) {
-  int y = 24;
-  for (const std::string& line : layout.title) {
-    plot::text(img, line, {12, y}, plot::kTitleScale, plot::kInk, 2);
-    y += 28;
-  }
-  for (const std::string& line : layout.caption) {
-    plot::text(img, line, {12, y - 4}, plot::kTickScale);
-    y += 20;
-  }
 }
 
 }  // namespace
@@ -649,7 +551,7 @@ cv::Mat render_disambiguation(const DisambiguationPicture& picture) {
   plot::axes_m(img, layout.start.view, 0.0, 0.0, sx, sy);
   const auto [wx, wy] = axis_labels(layout.world);
   plot::axes_m(img, layout.world.view, 0.0, 0.0, wx, wy);
-  draw_title(img, layout);
+  plot::title_block(img, layout.title, layout.caption);
   draw_heading(img, layout.start, start_heading(picture));
   draw_heading(img, layout.world, world_heading(picture));
   std::vector<plot::LegendItem> items = start_legend(picture);

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <utility>
 
 namespace gridloc::cli::plot {
 
@@ -43,6 +44,48 @@ cv::Size text_size(const std::string& s, double scale, int thickness) {
   return cv::getTextSize(s, kFont, scale, thickness, &baseline);
 }
 
+std::vector<std::string> wrap(const std::string& s, double scale, int thickness, int width) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  const auto flush_word = [&] {
+    if (word.empty()) return;
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_size(longer, scale, thickness).width > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    word.clear();
+  };
+  for (const char c : s) {
+    if (c == ' ')
+      flush_word();
+    else
+      word += c;
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+void title_block(cv::Mat& img, const std::vector<std::string>& title,
+                 const std::vector<std::string>& caption) {
+  int y = 24;
+  for (const std::string& line : title) {
+    text(img, line, {12, y}, kTitleScale, kInk, 2);
+    y += 28;
+  }
+  for (const std::string& line : caption) {
+    text(img, line, {12, y - 4}, kTickScale);
+    y += 20;
+  }
+}
+
+int title_block_bottom(std::size_t title_lines, std::size_t caption_lines) {
+  return 24 + 28 * static_cast<int>(title_lines) + 20 * static_cast<int>(caption_lines);
+}
+
 std::string fixed(double v, int digits) {
   std::ostringstream ss;
   ss << std::fixed << std::setprecision(digits) << (std::abs(v) < 0.5e-9 ? 0.0 : v);
@@ -68,6 +111,17 @@ int View::width() const {
 }
 int View::height() const {
   return static_cast<int>(std::lround((y1 - y0) * scale));
+}
+
+Box padded(Box box, double margin_fraction) {
+  if (box.empty()) box.add(Eigen::Vector2d::Zero());
+  const double side = (box.hi - box.lo).maxCoeff();
+  if (side < 0.01) {
+    const Eigen::Vector2d centre = 0.5 * (box.lo + box.hi);
+    return {centre - Eigen::Vector2d::Constant(0.5), centre + Eigen::Vector2d::Constant(0.5)};
+  }
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(margin_fraction * side);
+  return {box.lo - margin, box.hi + margin};
 }
 
 double fit_scale(double w, double h, double cell, double target_px) {
@@ -101,6 +155,28 @@ void circle(cv::Mat& img, const cv::Point2d& c, double radius, const cv::Scalar&
             int thickness) {
   cv::circle(img, sub(c), static_cast<int>(std::lround(radius * kSub)), colour, thickness,
              cv::LINE_AA, kShift);
+}
+
+namespace {
+/// The rings that can be drawn (an empty ring is left out).
+Contours drawable(Contours rings) {
+  std::erase_if(rings, [](const std::vector<cv::Point>& ring) { return ring.empty(); });
+  return rings;
+}
+}  // namespace
+
+void fill_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour) {
+  const Contours kept = drawable(rings);
+  if (!kept.empty()) cv::fillPoly(img, kept, colour, cv::LINE_AA, kShift);
+}
+
+void outline_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour, int thickness) {
+  const Contours kept = drawable(rings);
+  if (!kept.empty()) cv::polylines(img, kept, true, colour, thickness, cv::LINE_AA, kShift);
+}
+
+cv::Point2d direction(double heading) {
+  return {std::cos(heading), -std::sin(heading)};  // image rows grow downwards
 }
 
 void axes_m(cv::Mat& img, const View& v, double ox, double oy, const std::string& x_label,
@@ -179,12 +255,6 @@ void scale_bar(cv::Mat& img, const View& v) {
   text(img, s, {x + static_cast<int>(std::lround(px)) + 8, y}, kTickScale);
 }
 
-namespace {
-cv::Point2d direction(double heading) {
-  return {std::cos(heading), -std::sin(heading)};  // image rows grow downwards
-}
-}  // namespace
-
 void estimate_marker(cv::Mat& img, const cv::Point2d& p, double heading) {
   const cv::Point2d tip = p + direction(heading) * 26.0;
   line(img, p, tip, kWhite, 6);
@@ -236,6 +306,26 @@ int legend(cv::Mat& img, const std::vector<LegendItem>& items, int x, int y, int
     x += w;
   }
   return y;
+}
+
+LegendItem swatch(std::function<void(cv::Mat&, const cv::Rect&)> fill, std::string label) {
+  return {[fill](cv::Mat& m, const cv::Point2d& p) {
+            const cv::Rect r(static_cast<int>(p.x) + 2, static_cast<int>(p.y) - 7, 24, 14);
+            fill(m, r);
+            cv::rectangle(m, r, kSwatchEdge, 1);
+          },
+          std::move(label)};
+}
+
+LegendItem filled(const cv::Scalar& colour, std::string label) {
+  return swatch([colour](cv::Mat& m, const cv::Rect& r) { m(r) = colour; }, std::move(label));
+}
+
+LegendItem stroke(const cv::Scalar& colour, int thickness, std::string label) {
+  return {[colour, thickness](cv::Mat& m, const cv::Point2d& p) {
+            line(m, p, p + cv::Point2d(26, 0), colour, thickness);
+          },
+          std::move(label)};
 }
 
 cv::Mat viridis() {

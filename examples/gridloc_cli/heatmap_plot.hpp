@@ -1,7 +1,10 @@
 #pragma once
-// Plotting primitives for gridloc heatmap's images (OpenCV): text, ticks, a plot area in
-// metres, colour bar, scale bar, pose markers and legends. Dark text on white margins.
+// Plotting primitives for gridloc's images (OpenCV): text, ticks, a plot area in metres,
+// colour bar, scale bar, polygon rings, pose markers and legends. Dark text on white margins.
+#include <Eigen/Core>
+#include <cstddef>
 #include <functional>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -9,12 +12,13 @@
 namespace gridloc::cli::plot {
 
 // Colours are BGR.
-inline const cv::Scalar kInk(30, 30, 30);          ///< text and axes
-inline const cv::Scalar kWhite(255, 255, 255);     ///< halos, backgrounds
-inline const cv::Scalar kEstimate(30, 30, 220);    ///< the refined estimate: red
-inline const cv::Scalar kTruth(210, 40, 210);      ///< the truth: magenta
-inline const cv::Scalar kWindow(255, 255, 255);    ///< the search window outline
-inline const cv::Scalar kGridLine(228, 228, 228);  ///< light grid lines of line plots
+inline const cv::Scalar kInk(30, 30, 30);            ///< text and axes
+inline const cv::Scalar kWhite(255, 255, 255);       ///< halos, backgrounds
+inline const cv::Scalar kEstimate(30, 30, 220);      ///< the refined estimate: red
+inline const cv::Scalar kTruth(210, 40, 210);        ///< the truth: magenta
+inline const cv::Scalar kWindow(255, 255, 255);      ///< the search window outline
+inline const cv::Scalar kGridLine(228, 228, 228);    ///< light grid lines of line plots
+inline const cv::Scalar kSwatchEdge(150, 150, 150);  ///< legend boxes' outline
 
 constexpr double kTickScale = 0.45;   ///< tick labels, legends
 constexpr double kLabelScale = 0.5;   ///< axis labels
@@ -30,6 +34,17 @@ void text(cv::Mat& img, const std::string& s, cv::Point org, double scale,
 void halo_text(cv::Mat& img, const std::string& s, cv::Point org, double scale,
                const cv::Scalar& colour = kInk, int thickness = 1);
 cv::Size text_size(const std::string& s, double scale, int thickness = 1);
+
+/// Greedy word wrap of `s` into lines at most `width` px wide at `scale` (a word longer than
+/// the width gets a line of its own).
+std::vector<std::string> wrap(const std::string& s, double scale, int thickness, int width);
+
+/// The title lines (kTitleScale, bold, 28 px apart), then the caption lines (kTickScale, 20 px
+/// apart), from the top left of the image.
+void title_block(cv::Mat& img, const std::vector<std::string>& title,
+                 const std::vector<std::string>& caption);
+/// The row just below title_block()'s lines.
+int title_block_bottom(std::size_t title_lines, std::size_t caption_lines);
 
 /// `v` with `digits` decimals.
 std::string fixed(double v, int digits);
@@ -56,6 +71,24 @@ struct View {
   cv::Point2d at(int c, int r) const { return {x0 + (c + 0.5) / scale, y1 - (r + 0.5) / scale}; }
 };
 
+/// An axis-aligned box (m) of the finite points added to it.
+struct Box {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+
+  void add(const Eigen::Vector2d& p) {
+    if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  void add(const std::vector<Eigen::Vector2d>& points) {
+    for (const Eigen::Vector2d& p : points) add(p);
+  }
+  bool empty() const { return !(lo.x() <= hi.x()); }
+};
+
+/// The box grown by `margin_fraction` of its longer side on each side; a box under 1 cm (or
+/// empty: the origin) becomes a 1 m square about its centre.
+Box padded(Box box, double margin_fraction);
+
 /// px/m showing a w x h m region about `target_px` wide, with cells of `cell` m at least
 /// 4 px unless that makes the plot larger than 1600 px.
 double fit_scale(double w, double h, double cell, double target_px);
@@ -69,6 +102,16 @@ void dashed_line(cv::Mat& img, const cv::Point2d& a, const cv::Point2d& b, const
                  int thickness, double dash = 6.0);
 void circle(cv::Mat& img, const cv::Point2d& c, double radius, const cv::Scalar& colour,
             int thickness);
+
+/// Closed rings as sub-pixel points (kShift); an empty ring is skipped.
+using Contours = std::vector<std::vector<cv::Point>>;
+/// Fills the rings together (even-odd: holes stay unfilled).
+void fill_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour);
+void outline_rings(cv::Mat& img, const Contours& rings, const cv::Scalar& colour, int thickness);
+
+/// The image direction (unit, rows growing downwards) of grid-frame heading `heading` (rad,
+/// counter-clockwise from +x).
+cv::Point2d direction(double heading);
 
 /// Frame of the plot area and metre ticks below and left of it; tick labels add (ox, oy) to
 /// grid-frame coordinates (the map origin: world coordinates when the yaw is 0).
@@ -101,6 +144,12 @@ struct LegendItem {
 /// Lays the items out left to right from (x, y) (y = the text baseline), wrapping before
 /// `max_x`; returns the baseline of the last row.
 int legend(cv::Mat& img, const std::vector<LegendItem>& items, int x, int y, int max_x);
+/// A legend swatch: a 24 x 14 px box filled by `fill`, outlined in kSwatchEdge.
+LegendItem swatch(std::function<void(cv::Mat&, const cv::Rect&)> fill, std::string label);
+/// A legend swatch of one colour.
+LegendItem filled(const cv::Scalar& colour, std::string label);
+/// A legend line 26 px long.
+LegendItem stroke(const cv::Scalar& colour, int thickness, std::string label);
 
 /// The viridis colour map as a 256 x 1 BGR table (cv::applyColorMap, COLORMAP_VIRIDIS).
 cv::Mat viridis();

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -80,16 +79,6 @@ int sector_near(const SectorMap& sectors, const Eigen::Vector2d& p) {
     }
   }
   return best;
-}
-
-/// A legend swatch: a 24 x 14 px box filled by `fill`.
-plot::LegendItem swatch(std::function<void(cv::Mat&, const cv::Rect&)> fill, std::string label) {
-  return {[fill](cv::Mat& m, const cv::Point2d& p) {
-            const cv::Rect r(static_cast<int>(p.x) + 2, static_cast<int>(p.y) - 7, 24, 14);
-            fill(m, r);
-            cv::rectangle(m, r, cv::Scalar(150, 150, 150), 1);
-          },
-          std::move(label)};
 }
 
 /// A sector's mark on the picture: its text and the baseline origin of that text.
@@ -269,7 +258,7 @@ void draw_walls_and_marks(cv::Mat& img, const View& view, const SectorMap& secto
 /// The sectors, the ambiguous ones, the outside and the walls.
 std::vector<plot::LegendItem> sectors_legend() {
   std::vector<plot::LegendItem> items;
-  items.push_back(swatch(
+  items.push_back(plot::swatch(
       [](cv::Mat& m, const cv::Rect& r) {
         for (int k = 0; k < 3; ++k) {
           const cv::Vec3b c = sector_colour(k);
@@ -277,7 +266,7 @@ std::vector<plot::LegendItem> sectors_legend() {
         }
       },
       "sectors, numbered as in the table"));
-  items.push_back(swatch(
+  items.push_back(plot::swatch(
       [](cv::Mat& m, const cv::Rect& r) {
         m(r) = cv::Scalar(250, 250, 250);
         for (int y = 0; y < r.height; ++y) {
@@ -288,10 +277,11 @@ std::vector<plot::LegendItem> sectors_legend() {
         cv::rectangle(m, r, kAmbiguous, 2);
       },
       "ambiguous: another sector's label turned (seed 000 4.1)"));
-  items.push_back(
-      swatch([](cv::Mat& m,
-                const cv::Rect& r) { m(r) = cv::Scalar(kOutside[0], kOutside[1], kOutside[2]); },
-             "outside, obstacles"));
+  items.push_back(plot::swatch(
+      [](cv::Mat& m, const cv::Rect& r) {
+        m(r) = cv::Scalar(kOutside[0], kOutside[1], kOutside[2]);
+      },
+      "outside, obstacles"));
   items.push_back({[](cv::Mat& m, const cv::Point2d& p) {
                      plot::line(m, p + cv::Point2d(0, 0), p + cv::Point2d(26, 0), kWall, 2);
                      plot::circle(m, p + cv::Point2d(0, 0), 4.0, kWall, cv::FILLED);
