@@ -15,6 +15,7 @@
 #include "eval_drive.hpp"
 #include "eval_output.hpp"
 #include "eval_sectors.hpp"
+#include "eval_team.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
@@ -127,7 +128,12 @@ bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators)
 struct ProtocolArgs {
   std::string name;  ///< empty: seed 001's (or the sector protocol on polygon maps)
   DisambiguationEvalArgs disambiguation;
+  TeamEvalArgs team;
 };
+
+/// The team protocol's default maps: the thesis's T-room and the bundled rooms.
+constexpr const char* kTeamMaps =
+    "polygons/t_room,polygons/room_rect,polygons/room_l,polygons/room_furnished";
 
 /// Seed 001's protocol options from the command line.
 EvalOptions eval_options(const EvalArgs& args) {
@@ -163,6 +169,9 @@ void run_disambiguation(const EvalArgs& args, const DriveArgs& drive,
                         const ProtocolArgs& protocol) {
   if (drive.given) throw Error("--drive and --protocol disambiguation are different protocols");
   const DisambiguationEvalArgs& options = protocol.disambiguation;
+  if (options.sensor == "ir")
+    throw Error(
+        "--sensor ir goes with --protocol team; the disambiguation protocol takes sonar or laser");
   if (options.sensor.empty()) {
     return run_disambiguation_eval(options, args.seed, args.json, args.quiet);
   }
@@ -181,8 +190,25 @@ void run_disambiguation(const EvalArgs& args, const DriveArgs& drive,
   run_engine_loop_eval(options, inputs, args.seed, args.json, args.quiet);
 }
 
+/// Seed 003's team protocol on --maps (polygon or occupancy maps).
+void run_team(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
+  if (drive.given) throw Error("--drive and --protocol team are different protocols");
+  EvalArgs maps = args;
+  if (!args.maps_given) maps.maps = kTeamMaps;
+  TeamEvalInputs inputs;
+  inputs.map_files = map_files(maps, false);
+  inputs.sensor = protocol.disambiguation.sensor.empty() ? "ir" : protocol.disambiguation.sensor;
+  inputs.ring = args.ring;
+  inputs.trials = args.trials;
+  inputs.laser_max_range = args.laser.max_range;
+  inputs.laser_sigma_m = args.laser.sigma_m;
+  inputs.laser_beams = args.laser.beams;
+  run_team_eval(protocol.team, inputs, args.seed, args.json, args.quiet);
+}
+
 void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
   if (protocol.name == "disambiguation") return run_disambiguation(args, drive, protocol);
+  if (protocol.name == "team") return run_team(args, drive, protocol);
   check_step(args.step_xy);
   // Polygon maps or a sector estimator: the sector protocol.
   const bool sector_estimators = names_a_sector_estimator(args.estimators);
@@ -269,10 +295,13 @@ void add_eval(CLI::App& app) {
   add_drive_options(cmd, *drive);
   auto protocol = std::make_shared<ProtocolArgs>();
   cmd->add_option("--protocol", protocol->name,
-                  "disambiguation: seed 002's minimum-distance protocol on random offices "
-                  "(default: seed 001's, or the sector protocol on polygon maps)")
-      ->check(CLI::IsMember({"disambiguation"}));
+                  "disambiguation: seed 002's minimum-distance protocol on random offices; "
+                  "team: seed 003's random linked teams (default maps " +
+                      std::string(kTeamMaps) +
+                      ") (default: seed 001's, or the sector protocol on polygon maps)")
+      ->check(CLI::IsMember({"disambiguation", "team"}));
   add_disambiguation_options(cmd, protocol->disambiguation);
+  add_team_options(cmd, protocol->team);
   cmd->callback([args, drive, protocol] { run(*args, *drive, *protocol); });
 }
 

@@ -98,22 +98,6 @@ void print_table(const DisambiguationEvalArgs& args, const DisambiguationProtoco
   }
 }
 
-/// A progress line: `\r` on a terminal, one line per tenth otherwise.
-std::function<void(int, int)> progress_line(const char* label, bool quiet) {
-  const bool terminal = isatty(fileno(stderr)) != 0;
-  return [label, quiet, terminal, last = -1](int done, int total) mutable {
-    if (quiet) return;
-    const int tenth = 10 * done / total;
-    if (terminal) {
-      std::fprintf(stderr, "\r[%s] %d/%d trials", label, done, total);
-      if (done == total) std::fprintf(stderr, "\n");
-    } else if (tenth != last) {
-      std::fprintf(stderr, "[%s] %d/%d trials\n", label, done, total);
-    }
-    last = tenth;
-  };
-}
-
 EngineDisambiguationOptions engine_loop_options(const DisambiguationEvalArgs& args,
                                                 const EngineLoopInputs& inputs,
                                                 std::uint64_t seed) {
@@ -177,6 +161,22 @@ void print_engine_loop_table(const DisambiguationEvalArgs& args,
 
 }  // namespace
 
+/// A progress line: `\r` on a terminal, one line per tenth otherwise.
+std::function<void(int, int)> progress_line(const char* label, bool quiet) {
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  return [label, quiet, terminal, last = -1](int done, int total) mutable {
+    if (quiet) return;
+    const int tenth = 10 * done / total;
+    if (terminal) {
+      std::fprintf(stderr, "\r[%s] %d/%d trials", label, done, total);
+      if (done == total) std::fprintf(stderr, "\n");
+    } else if (tenth != last) {
+      std::fprintf(stderr, "[%s] %d/%d trials\n", label, done, total);
+    }
+    last = tenth;
+  };
+}
+
 void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopInputs& inputs,
                           std::uint64_t seed, bool json, bool quiet) {
   const EngineDisambiguationOptions options = engine_loop_options(args, inputs, seed);
@@ -219,8 +219,8 @@ void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
                   note +
                       "sonar | laser: the engine in the loop on --maps (default room_symmetric, "
                       "apartment_small), --trials ambiguous starts each, noisy sensing and "
-                      "odometry")
-      ->check(CLI::IsMember({"sonar", "laser"}));
+                      "odometry; --protocol team: ir (default) | laser | sonar")
+      ->check(CLI::IsMember({"sonar", "laser", "ir"}));
   cmd->add_option("--strategies", args.strategies,
                   note + "comma-separated: weighted, hybrid (seed 002 §V-A)")
       ->delimiter(',')

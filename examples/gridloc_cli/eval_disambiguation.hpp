@@ -3,6 +3,7 @@
 // COL and UAL with the standard weighted and hybrid strategies, by points and range, with the
 // lower bound beside every mean.
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct EngineLoopInputs {
   double laser_max_range = 8.0, laser_sigma_m = 0.01;
   int laser_beams = 360;
 };
+
+/// A progress callback (done, total) for stderr: `\r` on a terminal, one line per tenth
+/// otherwise; silent when `quiet`.
+std::function<void(int, int)> progress_line(const char* label, bool quiet);
 
 /// Registers --environments, --starts, --repeats, --points, --range, --algorithms, --strategies
 /// (they take effect with --protocol disambiguation).

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   gridloc::cli::add_heatmap(app);
   gridloc::cli::add_sectors(app);
   gridloc::cli::add_disambiguate(app);
+  gridloc::cli::add_team(app);
   gridloc::cli::add_track(app);
   try {
     app.parse(argc, argv);

@@ -24,6 +24,8 @@ constexpr int kMaxReadings = 100'000;
 constexpr double kBelowMax = 1e-6;
 /// The longest line of an IR scan CSV.
 constexpr std::size_t kMaxIrLineBytes = 64 * 1024;
+/// The moving average does not cross a jump of more than this between neighbouring readings (m).
+constexpr double kSmoothingJumpM = 0.05;
 
 /// Table II of seed 003: nominal distance (cm) and width of its 95 % interval (cm).
 struct IrCalibrationPoint {
@@ -206,24 +208,21 @@ RangeScan smooth_ir_scan(const RangeScan& scan, int half_window) {
   }
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(scan.ranges.size());
   if (half_window == 0 || n == 0) return scan;
-  // Prefix sums of the returns over the scan repeated three times: a window [k - h, k + h]
-  // is then one difference for any k. A window as long as the scan is the whole scan (no
-  // reading counts twice).
-  const std::ptrdiff_t h = half_window;
-  const bool whole = 2 * h + 1 >= n;
-  std::vector<double> sum(3 * n + 1, 0.0);
-  std::vector<std::ptrdiff_t> count(3 * n + 1, 0);
-  for (std::ptrdiff_t i = 0; i < 3 * n; ++i) {
-    const double r = scan.ranges[i % n];
-    const bool hit = r < scan.max_range;
-    sum[i + 1] = sum[i] + (hit ? r : 0.0);
-    count[i + 1] = count[i] + (hit ? 1 : 0);
-  }
+  const std::ptrdiff_t h = std::min<std::ptrdiff_t>(half_window, (n - 1) / 2);
+  const auto at = [&](std::ptrdiff_t k) { return scan.ranges[((k % n) + n) % n]; };
+  // Readings k and k + 1 belong to one wall: both returns, no jump between them.
+  const auto joined = [&](std::ptrdiff_t k) {
+    return at(k) < scan.max_range && at(k + 1) < scan.max_range &&
+           std::abs(at(k) - at(k + 1)) <= kSmoothingJumpM;
+  };
   RangeScan out = scan;
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     if (!(scan.ranges[k] < scan.max_range)) continue;  // saturated (or NaN) stays
-    const std::ptrdiff_t first = whole ? n : n + k - h, last = whole ? 2 * n : n + k + h + 1;
-    out.ranges[k] = (sum[last] - sum[first]) / static_cast<double>(count[last] - count[first]);
+    std::ptrdiff_t reach = 0;  // symmetric: as far as both sides stay on the wall
+    while (reach < h && joined(k - reach - 1) && joined(k + reach)) ++reach;
+    double sum = 0.0;
+    for (std::ptrdiff_t j = -reach; j <= reach; ++j) sum += at(k + j);
+    out.ranges[k] = sum / static_cast<double>(2 * reach + 1);
   }
   return out;
 }

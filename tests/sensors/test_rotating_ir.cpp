@@ -181,41 +181,49 @@ TEST(IrRangeSigma, FollowsTableII) {
 }
 
 /// Eight readings 45 degrees apart, max range 0.3; reading 2 saturated.
+/// Eight readings round the turn, reading 2 saturated, no jump over 5 cm between neighbours
+/// (also across the wrap from reading 7 to 0).
 RangeScan hand_scan() {
   RangeScan s;
   s.max_range = 0.3;
-  s.ranges = {0.10, 0.12, 0.30, 0.14, 0.16, 0.18, 0.20, 0.22};
+  s.ranges = {0.10, 0.12, 0.30, 0.14, 0.16, 0.18, 0.16, 0.12};
   for (int k = 0; k < 8; ++k) s.angles.push_back(-std::numbers::pi + k * std::numbers::pi / 4);
   return s;
 }
 
-TEST(SmoothIrScan, AveragesReturnsAroundTheTurn) {
+TEST(SmoothIrScan, AveragesSymmetricallyAroundTheTurn) {
   const RangeScan in = hand_scan();
   const RangeScan out = smooth_ir_scan(in, 1);
   EXPECT_EQ(out.angles, in.angles);
   EXPECT_EQ(out.max_range, 0.3);
   ASSERT_EQ(out.ranges.size(), 8u);
-  EXPECT_NEAR(out.ranges[0], (0.22 + 0.10 + 0.12) / 3, 1e-12);  // wraps to reading 7
-  EXPECT_NEAR(out.ranges[1], (0.10 + 0.12) / 2, 1e-12);         // saturated 2 left out
-  EXPECT_EQ(out.ranges[2], 0.30);                               // saturated stays
-  EXPECT_NEAR(out.ranges[3], (0.14 + 0.16) / 2, 1e-12);
+  EXPECT_NEAR(out.ranges[0], (0.12 + 0.10 + 0.12) / 3, 1e-12);  // wraps to reading 7
+  EXPECT_EQ(out.ranges[1], 0.12);  // next to the saturated reading: no symmetric window
+  EXPECT_EQ(out.ranges[2], 0.30);  // saturated stays
+  EXPECT_EQ(out.ranges[3], 0.14);
   EXPECT_NEAR(out.ranges[4], (0.14 + 0.16 + 0.18) / 3, 1e-12);
-  EXPECT_NEAR(out.ranges[5], (0.16 + 0.18 + 0.20) / 3, 1e-12);
-  EXPECT_NEAR(out.ranges[6], (0.18 + 0.20 + 0.22) / 3, 1e-12);
-  EXPECT_NEAR(out.ranges[7], (0.20 + 0.22 + 0.10) / 3, 1e-12);  // wraps to reading 0
+  EXPECT_NEAR(out.ranges[5], (0.16 + 0.18 + 0.16) / 3, 1e-12);
+  EXPECT_NEAR(out.ranges[6], (0.18 + 0.16 + 0.12) / 3, 1e-12);
+  EXPECT_NEAR(out.ranges[7], (0.16 + 0.12 + 0.10) / 3, 1e-12);  // wraps to reading 0
 }
 
-TEST(SmoothIrScan, WindowTwoAndWholeScan) {
+TEST(SmoothIrScan, TheWindowShrinksAlikeOnBothSidesNearTheWallsEnd) {
   const RangeScan two = smooth_ir_scan(hand_scan(), 2);
-  EXPECT_NEAR(two.ranges[0], (0.20 + 0.22 + 0.10 + 0.12) / 4, 1e-12);
-  EXPECT_NEAR(two.ranges[4], (0.14 + 0.16 + 0.18 + 0.20) / 4, 1e-12);
-  // A window as long as the scan: every return is the mean of all seven, each counted once.
-  for (int h : {4, 100}) {
-    const RangeScan all = smooth_ir_scan(hand_scan(), h);
-    for (int k = 0; k < 8; ++k) {
-      EXPECT_NEAR(all.ranges[k], k == 2 ? 0.30 : 1.12 / 7, 1e-12) << "h " << h << " k " << k;
-    }
-  }
+  EXPECT_NEAR(two.ranges[0], (0.12 + 0.10 + 0.12) / 3, 1e-12);  // reading 2 one beyond
+  EXPECT_NEAR(two.ranges[4], (0.14 + 0.16 + 0.18) / 3, 1e-12);
+  EXPECT_NEAR(two.ranges[5], (0.14 + 0.16 + 0.18 + 0.16 + 0.12) / 5, 1e-12);
+  EXPECT_NEAR(two.ranges[6], (0.16 + 0.18 + 0.16 + 0.12 + 0.10) / 5, 1e-12);
+  // However wide the window, it never reaches across the saturated reading.
+  EXPECT_EQ(smooth_ir_scan(hand_scan(), 100).ranges, smooth_ir_scan(hand_scan(), 3).ranges);
+}
+
+TEST(SmoothIrScan, TheWindowDoesNotCrossAJump) {
+  RangeScan in = hand_scan();
+  in.ranges[5] = 0.25;  // 9 cm beyond reading 4 and 6: another wall
+  const RangeScan out = smooth_ir_scan(in, 1);
+  EXPECT_EQ(out.ranges[4], 0.16);
+  EXPECT_EQ(out.ranges[5], 0.25);
+  EXPECT_EQ(out.ranges[6], 0.16);
 }
 
 TEST(SmoothIrScan, ZeroWindowKeepsTheScanAndNegativeThrows) {
@@ -275,7 +283,7 @@ TEST(LoadIrScanCsv, RadiansAndMetresByDefaultAndSmoothed) {
   o.smoothing_half_window = 1;
   const RangeScan smoothed = load_ir_scan_csv(path, o);
   EXPECT_EQ(smoothed.ranges, smooth_ir_scan(raw, 1).ranges);
-  EXPECT_NEAR(smoothed.ranges[1], 0.11, 1e-12);
+  EXPECT_NEAR(smoothed.ranges[4], (0.14 + 0.16 + 0.18) / 3, 1e-12);
 }
 
 TEST(LoadIrScanCsv, ErrorsNameTheFileAndLine) {

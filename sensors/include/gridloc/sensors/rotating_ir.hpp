@@ -46,11 +46,12 @@ RangeScan simulate_ir_scan(const OccupancyMap& map, const Pose2& pose,
                            const IrSensorOptions& options, std::uint64_t seed);
 
 /// The thesis's moving-average filter: each return replaced by the mean of itself and the
-/// returns among the half_window readings before and after it (around the turn: the scan is
-/// circular); saturated readings (>= max_range) stay saturated and are not averaged in. A
-/// window of 2 half_window + 1 >= the scan's size is the whole scan (each return once); 0
-/// returns the scan as it is. Throws gridloc::Error for half_window < 0 or angles and ranges
-/// of different sizes.
+/// half_window readings before and after it (around the turn: the scan is circular). The
+/// window stays on one wall and symmetric: it shrinks, on both sides alike, so as not to
+/// reach a saturated reading (>= max_range, which stays as it is) or cross a jump of more than
+/// 5 cm between neighbours; a one-sided window would pull a wall's last returns off its line
+/// where the sensor's range ends. 0 returns the scan as it is. Throws gridloc::Error for
+/// half_window < 0 or angles and ranges of different sizes.
 RangeScan smooth_ir_scan(const RangeScan& scan, int half_window);
 
 /// Reads a real scan from a plain CSV: one reading per line, `angle,range`; a first line

@@ -1,0 +1,157 @@
+#include "gridloc/engine/team/pose_candidates.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gridloc/grids/error.hpp"
+#include "wall_geometry.hpp"
+
+namespace gridloc {
+
+using team_detail::heading_of;
+using team_detail::wall_direction;
+
+Eigen::Vector2d PoseCandidate::position(double t) const {
+  return Eigen::Vector2d(pose.x, pose.y) + t * along;
+}
+
+void validate(const CandidateOptions& options) {
+  auto require = [](bool ok, const char* message) {
+    if (!ok) throw Error(message);
+  };
+  require(std::isfinite(options.angle_tolerance) && options.angle_tolerance > 0.0,
+          "candidate angle_tolerance must be positive and finite");
+  require(options.features >= 1, "candidate features must be >= 1");
+  require(std::isfinite(options.merge_m) && options.merge_m >= 0.0,
+          "candidate merge_m must be >= 0 and finite");
+  require(std::isfinite(options.merge_theta) && options.merge_theta >= 0.0,
+          "candidate merge_theta must be >= 0 and finite");
+  require(options.min_agreement >= 0.0 && options.min_agreement <= 1.0,
+          "candidate min_agreement must be in [0, 1]");
+  require(std::isfinite(options.agreement_tolerance_m) && options.agreement_tolerance_m > 0.0,
+          "candidate agreement_tolerance_m must be positive and finite");
+}
+
+namespace {
+
+/// The robot's pose once the map-frame vector from it to the feature's point is known
+/// (eqs. 3.25-3.27: the heading is the map angle to the point minus the scan angle to it).
+Pose2 place_at(const Eigen::Vector2d& map_point, const Eigen::Vector2d& robot_to_point,
+               const ScanFeature& feature) {
+  const Eigen::Vector2d robot = map_point - robot_to_point;
+  const double heading = heading_of(robot_to_point) - heading_of(feature.point);
+  return {robot.x(), robot.y(), normalize_angle(heading)};
+}
+
+bool same_kind(const ScanFeature& feature, const MapCorner& corner, double tolerance) {
+  const bool convex = feature.kind != FeatureKind::ConcaveCorner;
+  if (convex != corner.convex()) return false;
+  if (feature.kind == FeatureKind::ConvexCornerOneWall) return true;  // its angle is unseen
+  return std::abs(feature.free_angle - corner.free_angle) <= tolerance;
+}
+
+std::vector<PoseCandidate> corner_candidates(const ScanFeature& feature, int feature_index,
+                                             const MapFeatures& map,
+                                             const CandidateOptions& options) {
+  std::vector<PoseCandidate> candidates;
+  for (std::size_t c = 0; c < map.corners.size(); ++c) {
+    const MapCorner& corner = map.corners[c];
+    if (!same_kind(feature, corner, options.angle_tolerance)) continue;
+    const Eigen::Vector2d in = wall_direction(map.walls[corner.in]);
+    const Eigen::Vector2d out = wall_direction(map.walls[corner.out]);
+    Eigen::Vector2d offsets;
+    if (feature.kind == FeatureKind::ConvexCornerOneWall)
+      offsets = cartesian_offsets(feature, feature.seen_wall_arrives ? in : out, {});
+    else
+      offsets = cartesian_offsets(feature, in, out);
+    PoseCandidate candidate;
+    candidate.pose = place_at(corner.point, offsets, feature);
+    candidate.feature = feature_index;
+    candidate.map_feature = static_cast<int>(c);
+    candidates.push_back(candidate);
+  }
+  return candidates;
+}
+
+/// A wall seen between two saturation points fits on a map wall wherever the seen part lies
+/// within it: the foot of the robot's perpendicular at t along the wall, t in
+/// [-before, length - after] (ch. III B 1).
+std::vector<PoseCandidate> wall_candidates(const ScanFeature& feature, int feature_index,
+                                           const MapFeatures& map) {
+  const double before = (feature.point - feature.saturation1).dot(feature.wall1);
+  const double after = (feature.saturation2 - feature.point).dot(feature.wall1);
+  std::vector<PoseCandidate> candidates;
+  for (std::size_t w = 0; w < map.walls.size(); ++w) {
+    const MapWall& wall = map.walls[w];
+    const Eigen::Vector2d direction = wall_direction(wall);
+    const double length = (wall.b - wall.a).norm();
+    const double first = std::max(before, 0.0), last = length - std::max(after, 0.0);
+    if (last < first) continue;
+    const Eigen::Vector2d foot = wall.a + first * direction;
+    PoseCandidate candidate;
+    candidate.pose = place_at(foot, cartesian_offsets(feature, direction, {}), feature);
+    candidate.along = direction;
+    candidate.length = last - first;
+    candidate.feature = feature_index;
+    candidate.map_feature = static_cast<int>(w);
+    candidates.push_back(candidate);
+  }
+  return candidates;
+}
+
+bool same_placement(const PoseCandidate& a, const PoseCandidate& b,
+                    const CandidateOptions& options) {
+  if (a.segment() != b.segment()) return false;
+  if (std::abs(normalize_angle(a.pose.theta - b.pose.theta)) > options.merge_theta) return false;
+  if ((a.position() - b.position()).norm() > options.merge_m) return false;
+  return !a.segment() || ((a.position(a.length) - b.position(b.length)).norm() <= options.merge_m);
+}
+
+}  // namespace
+
+std::vector<PoseCandidate> feature_candidates(const ScanFeature& feature, int feature_index,
+                                              const MapFeatures& map,
+                                              const CandidateOptions& options) {
+  validate(options);
+  if (feature.kind == FeatureKind::Wall) return wall_candidates(feature, feature_index, map);
+  return corner_candidates(feature, feature_index, map, options);
+}
+
+std::vector<PoseCandidate> robot_candidates(const RangeScan& scan,
+                                            const std::vector<ScanFeature>& features,
+                                            const MapFeatures& map,
+                                            const CandidateOptions& options) {
+  validate(options);
+  std::vector<PoseCandidate> kept;
+  const int used = std::min<int>(options.features, static_cast<int>(features.size()));
+  for (int f = 0; f < used; ++f)
+    for (PoseCandidate& candidate : feature_candidates(features[f], f, map, options)) {
+      if (!candidate.segment() && options.min_agreement > 0.0 &&
+          scan_agreement(scan, candidate.pose, map, options.agreement_tolerance_m) <
+              options.min_agreement)
+        continue;
+      const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const PoseCandidate& k) {
+        return same_placement(k, candidate, options);
+      });
+      if (!duplicate) kept.push_back(candidate);
+    }
+  return kept;
+}
+
+double scan_agreement(const RangeScan& scan, const Pose2& pose, const MapFeatures& map,
+                      double tolerance_m) {
+  if (scan.ranges.empty()) return 0.0;
+  const Eigen::Vector2d origin(pose.x, pose.y);
+  std::size_t agreeing = 0;
+  for (std::size_t k = 0; k < scan.ranges.size(); ++k) {
+    const double wall =
+        team_detail::ray_distance(map, origin, team_detail::unit_at(pose.theta + scan.angles[k]));
+    const bool saturated = scan.ranges[k] >= scan.max_range;
+    if (saturated ? wall >= scan.max_range - tolerance_m
+                  : std::abs(wall - scan.ranges[k]) <= tolerance_m)
+      ++agreeing;
+  }
+  return static_cast<double>(agreeing) / static_cast<double>(scan.ranges.size());
+}
+
+}  // namespace gridloc

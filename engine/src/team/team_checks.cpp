@@ -1,0 +1,234 @@
+#include "team_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wall_geometry.hpp"
+
+namespace gridloc::team_detail {
+
+namespace {
+
+Eigen::Vector2d position(const Pose2& pose) {
+  return {pose.x, pose.y};
+}
+
+Eigen::Vector2d slide_shift(const TeamSolution& solution, double t) {
+  return solution.slide.moving() ? Eigen::Vector2d(t * solution.slide.direction)
+                                 : Eigen::Vector2d::Zero();
+}
+
+bool link_agrees(const TeamSolution& solution, const VirtualLink& link, const MapFeatures& map,
+                 const TeamOptions& options) {
+  const Pose2& from = solution.poses[link.from];
+  const Pose2& to = solution.poses[link.to];
+  if ((linked_position(link, from) - position(to)).norm() >
+      position_gate(link, options.camera, options.gate))
+    return false;
+  const double heading = linked_heading(link, from.theta);
+  if (!std::isnan(heading) &&
+      std::abs(normalize_angle(heading - to.theta)) > heading_gate(options.camera, options.gate))
+    return false;
+  const Eigen::Vector2d middle =
+      slide_shift(solution, solution.slide.moving() ? 0.5 * solution.slide.length : 0.0);
+  return line_of_sight(map, position(from) + middle, position(to) + middle);
+}
+
+/// Every robot in the free space, and its scan (when it has one) agreeing with the map there.
+bool scans_agree(const TeamSolution& solution, const std::vector<TeamRobot>& robots,
+                 const MapFeatures& map, const TeamOptions& options, double t) {
+  const Eigen::Vector2d shift = slide_shift(solution, t);
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    Pose2 pose = solution.poses[r];
+    pose.x += shift.x();
+    pose.y += shift.y();
+    if (!map.walls.empty() && !inside_free_space(map, position(pose))) return false;
+    if (robots[r].scan.ranges.empty() || options.min_agreement <= 0.0) continue;
+    if (scan_agreement(robots[r].scan, pose, map, options.agreement_tolerance_m) <
+        options.min_agreement)
+      return false;
+  }
+  return true;
+}
+
+/// The longest stretch of the slide along which every scan agrees, sampled every 2 cm.
+std::optional<TeamSolution> agreeing_stretch(const TeamSolution& solution,
+                                             const std::vector<TeamRobot>& robots,
+                                             const MapFeatures& map, const TeamOptions& options) {
+  const double length = solution.slide.length;
+  const int samples = std::clamp(static_cast<int>(std::ceil(length / 0.02)), 1, 500);
+  int best_first = -1, best_count = 0, first = -1;
+  for (int k = 0; k <= samples + 1; ++k) {
+    const bool ok =
+        k <= samples && scans_agree(solution, robots, map, options, length * k / samples);
+    if (ok && first < 0) first = k;
+    if (!ok && first >= 0) {
+      if (k - first > best_count) best_first = first, best_count = k - first;
+      first = -1;
+    }
+  }
+  if (best_count == 0) return std::nullopt;
+  TeamSolution kept = solution;
+  const Eigen::Vector2d shift = slide_shift(solution, length * best_first / samples);
+  for (Pose2& pose : kept.poses) pose.x += shift.x(), pose.y += shift.y();
+  const double kept_length = length * (best_count - 1) / samples;
+  if (kept_length > 0.0)
+    kept.slide.length = kept_length;
+  else
+    kept.slide = Slide{};
+  return kept;
+}
+
+/// A position estimate and its weight (1 / variance).
+struct Vote {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  double weight = 0.0;
+  void add(const Eigen::Vector2d& p, double w) { sum += w * p, weight += w; }
+};
+
+Eigen::Vector2d anchor(const PoseCandidate& candidate, const Eigen::Vector2d& current) {
+  if (!candidate.segment()) return candidate.position();
+  const double t =
+      std::clamp((current - candidate.position()).dot(candidate.along), 0.0, candidate.length);
+  return candidate.position(t);
+}
+
+void refine_one(TeamSolution& solution, const std::vector<TeamRobot>& robots,
+                const std::vector<VirtualLink>& links, const TeamOptions& options) {
+  const double placement = std::max(options.gate.placement_sigma_m, 1e-3);
+  for (int iteration = 0; iteration < 20; ++iteration)
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      Vote vote;
+      const int c = solution.candidates[r];
+      const Eigen::Vector2d current = position(solution.poses[r]);
+      if (c >= 0) vote.add(anchor(robots[r].candidates[c], current), 1.0 / (placement * placement));
+      for (const VirtualLink& link : links) {
+        if (link.from != static_cast<int>(r) && link.to != static_cast<int>(r)) continue;
+        const double lever =
+            link.length_m * std::hypot(options.camera.bearing_sigma, options.gate.heading_sigma);
+        const double sigma = std::hypot(length_sigma(options.camera, link.length_m), lever);
+        const Pose2& from = solution.poses[link.from];
+        const Eigen::Vector2d vector = linked_position(link, from) - position(from);
+        const Eigen::Vector2d estimate =
+            link.to == static_cast<int>(r)
+                ? Eigen::Vector2d(position(from) + vector)
+                : Eigen::Vector2d(position(solution.poses[link.to]) - vector);
+        vote.add(estimate, 1.0 / std::max(sigma * sigma, 1e-8));
+      }
+      if (vote.weight <= 0.0) continue;
+      const Eigen::Vector2d refined = vote.sum / vote.weight;
+      solution.poses[r].x = refined.x();
+      solution.poses[r].y = refined.y();
+    }
+}
+
+bool same_solution(const TeamSolution& a, const TeamSolution& b, const TeamOptions& options) {
+  if (a.slide.moving() != b.slide.moving()) return false;
+  for (std::size_t r = 0; r < a.poses.size(); ++r) {
+    if ((position(a.poses[r]) - position(b.poses[r])).norm() > options.merge_m) return false;
+    if (std::abs(normalize_angle(a.poses[r].theta - b.poses[r].theta)) > options.merge_theta)
+      return false;
+  }
+  return true;
+}
+
+bool near(const Pose2& a, const Pose2& b, const TeamOptions& options) {
+  return (position(a) - position(b)).norm() <= options.merge_m &&
+         std::abs(normalize_angle(a.theta - b.theta)) <= options.merge_theta;
+}
+
+}  // namespace
+
+std::vector<TeamSolution> agreeing_with_links(std::vector<TeamSolution> solutions,
+                                              const std::vector<VirtualLink>& links,
+                                              const std::vector<int>& checks,
+                                              const MapFeatures& map, const TeamOptions& options) {
+  std::erase_if(solutions, [&](const TeamSolution& solution) {
+    return std::any_of(checks.begin(), checks.end(),
+                       [&](int l) { return !link_agrees(solution, links[l], map, options); });
+  });
+  return solutions;
+}
+
+std::vector<TeamSolution> agreeing_with_scans(std::vector<TeamSolution> solutions,
+                                              const std::vector<TeamRobot>& robots,
+                                              const MapFeatures& map, const TeamOptions& options) {
+  std::vector<TeamSolution> kept;
+  for (const TeamSolution& solution : solutions) {
+    if (!solution.slide.moving()) {
+      if (scans_agree(solution, robots, map, options, 0.0)) kept.push_back(solution);
+    } else if (auto stretch = agreeing_stretch(solution, robots, map, options)) {
+      kept.push_back(std::move(*stretch));
+    }
+  }
+  return kept;
+}
+
+void refine(std::vector<TeamSolution>& solutions, const std::vector<TeamRobot>& robots,
+            const std::vector<VirtualLink>& links, const TeamOptions& options) {
+  for (TeamSolution& solution : solutions)
+    if (!solution.slide.moving()) refine_one(solution, robots, links, options);
+}
+
+std::vector<TeamSolution> ranked_rivals(std::vector<TeamSolution> solutions,
+                                        const std::vector<TeamRobot>& robots,
+                                        const TeamOptions& options) {
+  for (TeamSolution& solution : solutions) {
+    solution.weight = 0.0;
+    for (std::size_t r = 0; r < robots.size(); ++r)
+      if (solution.candidates[r] >= 0)
+        solution.weight += robots[r].candidates[solution.candidates[r]].weight;
+  }
+  std::stable_sort(solutions.begin(), solutions.end(), [](const auto& a, const auto& b) {
+    if (a.weight != b.weight) return a.weight > b.weight;
+    return a.residual_m < b.residual_m;
+  });
+  std::vector<TeamSolution> rivals;
+  for (TeamSolution& solution : solutions) {
+    if (!rivals.empty() && solution.weight < options.rival_ratio * rivals.front().weight - 1e-12)
+      break;
+    const bool duplicate = std::any_of(rivals.begin(), rivals.end(), [&](const auto& kept) {
+      return same_solution(kept, solution, options);
+    });
+    if (!duplicate) rivals.push_back(std::move(solution));
+  }
+  return rivals;
+}
+
+TeamAnswer answer_from(std::vector<TeamSolution> rivals, int robots, const TeamOptions& options) {
+  TeamAnswer answer;
+  answer.robots.resize(robots);
+  answer.solutions = std::move(rivals);
+  if (answer.solutions.empty()) return answer;
+  const bool fixed = !answer.solutions.front().slide.moving();
+  answer.verdict = answer.solutions.size() == 1 && fixed ? Verdict::Localized : Verdict::Ambiguous;
+  for (int r = 0; r < robots; ++r) {
+    RobotAnswer& robot = answer.robots[r];
+    robot.pose = answer.solutions.front().poses[r];
+    for (const TeamSolution& solution : answer.solutions) {
+      robot.slides = robot.slides || solution.slide.moving();
+      const Pose2& pose = solution.poses[r];
+      if (std::none_of(robot.places.begin(), robot.places.end(),
+                       [&](const Pose2& place) { return near(place, pose, options); }))
+        robot.places.push_back(pose);
+    }
+    robot.verdict =
+        robot.places.size() == 1 && !robot.slides ? Verdict::Localized : Verdict::Ambiguous;
+  }
+  const TeamSolution& best = answer.solutions.front();
+  for (std::size_t k = 1; k < answer.solutions.size(); ++k)
+    for (int i = 0; i < robots; ++i)
+      for (int j = i + 1; j < robots; ++j) {
+        const auto& rival = answer.solutions[k].poses;
+        const bool swapped =
+            (position(rival[i]) - position(best.poses[j])).norm() <= 2.0 * options.merge_m &&
+            (position(rival[j]) - position(best.poses[i])).norm() <= 2.0 * options.merge_m;
+        const std::pair<int, int> pair{i, j};
+        if (swapped &&
+            std::find(answer.swaps.begin(), answer.swaps.end(), pair) == answer.swaps.end())
+          answer.swaps.push_back(pair);
+      }
+  return answer;
+}
+
+}  // namespace gridloc::team_detail

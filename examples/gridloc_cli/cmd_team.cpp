@@ -1,0 +1,176 @@
+// gridloc team: several robots localized together through the virtual links between them
+// (seed 003): each robot's candidate placements from its own sensing, the pairs the links
+// join, the team's solutions and a verdict for the team and each robot.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "commands.hpp"
+#include "gridloc/engine/evaluation/team_protocol.hpp"
+#include "gridloc/grids/error.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
+#include "heatmap_plot.hpp"
+#include "limit_options.hpp"
+#include "team_io.hpp"
+#include "team_render.hpp"
+
+namespace gridloc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct TeamArgs {
+  std::string map, robots, poses, sensor = "ir", ring, link_noise = "0.02,1", out;
+  double link_range = CameraModel{}.max_range_m;
+  double ir_range = IrSensorOptions{}.max_range_m;
+  std::uint64_t seed = 1;
+  bool json = false, exact = false;
+};
+
+TeamWorld load_world(const std::string& path) {
+  if (is_polygon_map_file(path, limits())) return make_team_world(load_polygon_map(path, limits()));
+  return make_team_world(load_ros_map(path, limits()));
+}
+
+TeamSensing sensing_from(const TeamArgs& args) {
+  TeamSensing sensing;
+  sensing.sensor = parse_team_sensor(args.sensor);
+  sensing.ir.max_range_m = args.ir_range;
+  sensing.camera.max_range_m = args.link_range;
+  parse_link_noise(args.link_noise, sensing.camera);
+  sensing.noise = !args.exact;
+  if (sensing.sensor == TeamSensor::Sonar) {
+    if (args.ring.empty()) throw Error("team --sensor sonar: give the ring with --ring");
+    sensing.ring = load_sonar_ring(args.ring, limits());
+  }
+  return sensing;
+}
+
+/// The estimator path's placements are as precise as its search lattice, not a corner fit.
+TeamOptions solver_options(const TeamSensing& sensing) {
+  TeamOptions options;
+  options.camera = sensing.camera;
+  if (sensing.sensor != TeamSensor::Ir) {
+    options.gate.placement_sigma_m = 0.05;
+    options.gate.heading_sigma = 3.0 * kDeg;
+  }
+  return options;
+}
+
+TeamCase team_from(const TeamArgs& args, const TeamSimulator& simulator) {
+  if (args.poses.empty() == args.robots.empty())
+    throw Error("team: give either --poses (simulated) or --robots robots.json (measured)");
+  if (!args.poses.empty()) return simulator.simulate(parse_team_poses(args.poses), args.seed);
+  return load_team(args.robots, simulator);
+}
+
+void print_summary(const TeamCase& team, const TeamAnswer& answer) {
+  for (std::size_t r = 0; r < team.robots.size(); ++r) {
+    const RobotAnswer& robot = answer.robots[r];
+    std::printf("robot %zu: %zu candidates, %s", r, team.robots[r].candidates.size(),
+                to_string(robot.verdict).c_str());
+    if (!answer.solutions.empty())
+      std::printf(" at (%.3f, %.3f, %.1f deg)", robot.pose.x, robot.pose.y,
+                  robot.pose.theta / kDeg);
+    if (robot.places.size() > 1) std::printf(", %zu places", robot.places.size());
+    std::printf("\n");
+  }
+  std::printf("team: %s, %zu solution%s, %zu links used\n", to_string(answer.verdict).c_str(),
+              answer.solutions.size(), answer.solutions.size() == 1 ? "" : "s",
+              answer.links_used.size());
+}
+
+TeamPicture picture_of(const TeamArgs& args, const TeamSimulator& simulator, const TeamCase& team,
+                       const TeamAnswer& answer) {
+  TeamPicture picture;
+  picture.title = fs::path(args.map).filename().string() + ": " +
+                  std::to_string(team.robots.size()) + " robots, " + args.sensor +
+                  ", links up to " + plot::number(args.link_range) + " m";
+  picture.caption = "team " + to_string(answer.verdict) + ", " +
+                    std::to_string(answer.solutions.size()) + " solution" +
+                    (answer.solutions.size() == 1 ? "" : "s");
+  picture.polygons = simulator.world().polygons;
+  picture.grid = simulator.world().grid;
+  picture.features = simulator.world().features;
+  for (const TeamRobot& robot : team.robots) picture.candidates.push_back(robot.candidates);
+  picture.solutions = answer.solutions;
+  picture.links = team.links;
+  picture.links_used = answer.links_used;
+  picture.truth = team.truth;
+  return picture;
+}
+
+void write_outputs(const TeamArgs& args, const TeamSimulator& simulator, const TeamCase& team,
+                   const TeamAnswer& answer, const nlohmann::json& out) {
+  std::error_code error;
+  fs::create_directories(args.out, error);
+  if (error)
+    throw Error("--out " + args.out + ": cannot create the folder (" + error.message() + ")");
+  const std::string json_path = (fs::path(args.out) / "team.json").string();
+  const std::string png_path = (fs::path(args.out) / "team.png").string();
+  std::ofstream file(json_path);
+  file << out.dump(2) << "\n";
+  if (!file) throw Error(json_path + ": cannot write");
+  plot::write_png(png_path, render_team(picture_of(args, simulator, team, answer)));
+  if (!args.json) std::printf("wrote %s and %s\n", png_path.c_str(), json_path.c_str());
+}
+
+void run(const TeamArgs& args) {
+  const TeamWorld world = load_world(args.map);
+  const TeamSensing sensing = sensing_from(args);
+  const TeamSimulator simulator(world, sensing);
+  const TeamCase team = team_from(args, simulator);
+  const TeamAnswer answer =
+      localize_team(team.robots, team.links, world.features, solver_options(sensing));
+  const nlohmann::json out = team_json(team, answer);
+  if (args.json)
+    std::cout << out.dump(2) << "\n";
+  else
+    print_summary(team, answer);
+  if (!args.out.empty()) write_outputs(args, simulator, team, answer, out);
+}
+
+}  // namespace
+
+void add_team(CLI::App& app) {
+  auto args = std::make_shared<TeamArgs>();
+  auto* cmd = app.add_subcommand(
+      "team", "Localize several robots together through the virtual links between them (seed 003)");
+  cmd->add_option("--map", args->map,
+                  "polygon map (YAML with a 'boundary') or occupancy map (map_server YAML)")
+      ->required();
+  cmd->add_option("--robots", args->robots,
+                  "robots.json: each robot's scan (or sonar readings) and the measured links");
+  cmd->add_option("--poses", args->poses,
+                  "true poses \"x,y,theta;x,y,theta[;...]\" (m, m, theta in radians): each robot's "
+                  "scan and the links are simulated there");
+  cmd->add_option("--sensor", args->sensor,
+                  "ir (the rotating IR sensor and its features, seed 003), laser or sonar (the "
+                  "correlation engine's hypotheses)")
+      ->check(CLI::IsMember({"ir", "laser", "sonar"}));
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (--sensor sonar)");
+  cmd->add_option("--ir-range", args->ir_range,
+                  "the IR sensor's truncation range (m); the thesis truncated at 0.30")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--link-range", args->link_range,
+                  "the camera's range for links (m); the thesis's CMUCam: about 1.1")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--link-noise", args->link_noise,
+                  "SIGMA_M[,BEARING_DEG]: link length sigma at the link range (growing with the "
+                  "square of the length) and bearing sigma");
+  cmd->add_flag("--exact", args->exact, "--poses: simulate without sensor and link noise");
+  cmd->add_option("--seed", args->seed, "seed of the simulated noise");
+  cmd->add_option("--out", args->out, "folder for team.png and team.json");
+  cmd->add_flag("--json", args->json, "print the answer as JSON");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace gridloc::cli
