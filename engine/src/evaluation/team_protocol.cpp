@@ -58,6 +58,7 @@ RangeScan simulate_ir(const TeamWorld& world, const Pose2& pose, const TeamSensi
                       std::uint64_t seed) {
   IrSensorOptions ir = sensing.ir;
   ir.noise = ir.noise && sensing.noise;
+  if (!sensing.noise) ir.smoothing_half_window = 0;  // the thesis filtered real data only
   return world.polygons ? simulate_ir_scan(*world.polygons, pose, ir, seed)
                         : simulate_ir_scan(world.grid, pose, ir, seed);
 }

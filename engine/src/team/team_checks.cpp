@@ -93,32 +93,62 @@ Eigen::Vector2d anchor(const PoseCandidate& candidate, const Eigen::Vector2d& cu
   return candidate.position(t);
 }
 
+/// A robot's heading as its candidate has it and as each link with a back bearing implies it
+/// from the other robot's, averaged on the circle with weights 1 / variance.
+double refined_heading(const TeamSolution& solution, std::size_t robot,
+                       const std::vector<TeamRobot>& robots, const std::vector<VirtualLink>& links,
+                       const TeamOptions& options) {
+  const double own = std::max(options.gate.heading_sigma, 1e-4);
+  const double bearing = options.camera.bearing_sigma;
+  const double linked = 1.0 / (own * own + 2.0 * bearing * bearing);
+  const int r = static_cast<int>(robot);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  const int c = solution.candidates[robot];
+  if (c >= 0) sum += team_detail::unit_at(robots[robot].candidates[c].pose.theta) / (own * own);
+  for (const VirtualLink& link : links) {
+    if (std::isnan(link.back_bearing) || (link.from != r && link.to != r)) continue;
+    const double turn = linked_heading(link, 0.0);  // theta_to - theta_from
+    const double heading = link.to == r ? solution.poses[link.from].theta + turn
+                                        : solution.poses[link.to].theta - turn;
+    sum += linked * team_detail::unit_at(heading);
+  }
+  return sum.squaredNorm() > 0.0 ? team_detail::heading_of(sum) : solution.poses[robot].theta;
+}
+
+/// A robot's position as its candidate has it and as each link puts it from the other robot,
+/// averaged with weights 1 / variance.
+Eigen::Vector2d refined_position(const TeamSolution& solution, std::size_t robot,
+                                 const std::vector<TeamRobot>& robots,
+                                 const std::vector<VirtualLink>& links,
+                                 const TeamOptions& options) {
+  const double placement = std::max(options.gate.placement_sigma_m, 1e-3);
+  const int r = static_cast<int>(robot);
+  Vote vote;
+  const int c = solution.candidates[robot];
+  const Eigen::Vector2d current = position(solution.poses[robot]);
+  if (c >= 0) vote.add(anchor(robots[robot].candidates[c], current), 1.0 / (placement * placement));
+  for (const VirtualLink& link : links) {
+    if (link.from != r && link.to != r) continue;
+    const double lever =
+        link.length_m * std::hypot(options.camera.bearing_sigma, options.gate.heading_sigma);
+    const double sigma = std::hypot(length_sigma(options.camera, link.length_m), lever);
+    const Pose2& from = solution.poses[link.from];
+    const Eigen::Vector2d vector = linked_position(link, from) - position(from);
+    vote.add(link.to == r ? Eigen::Vector2d(position(from) + vector)
+                          : Eigen::Vector2d(position(solution.poses[link.to]) - vector),
+             1.0 / std::max(sigma * sigma, 1e-8));
+  }
+  return vote.weight > 0.0 ? Eigen::Vector2d(vote.sum / vote.weight) : current;
+}
+
 void refine_one(TeamSolution& solution, const std::vector<TeamRobot>& robots,
                 const std::vector<VirtualLink>& links, const TeamOptions& options) {
-  const double placement = std::max(options.gate.placement_sigma_m, 1e-3);
   for (int iteration = 0; iteration < 20; ++iteration)
     for (std::size_t r = 0; r < robots.size(); ++r) {
-      Vote vote;
-      const int c = solution.candidates[r];
-      const Eigen::Vector2d current = position(solution.poses[r]);
-      if (c >= 0) vote.add(anchor(robots[r].candidates[c], current), 1.0 / (placement * placement));
-      for (const VirtualLink& link : links) {
-        if (link.from != static_cast<int>(r) && link.to != static_cast<int>(r)) continue;
-        const double lever =
-            link.length_m * std::hypot(options.camera.bearing_sigma, options.gate.heading_sigma);
-        const double sigma = std::hypot(length_sigma(options.camera, link.length_m), lever);
-        const Pose2& from = solution.poses[link.from];
-        const Eigen::Vector2d vector = linked_position(link, from) - position(from);
-        const Eigen::Vector2d estimate =
-            link.to == static_cast<int>(r)
-                ? Eigen::Vector2d(position(from) + vector)
-                : Eigen::Vector2d(position(solution.poses[link.to]) - vector);
-        vote.add(estimate, 1.0 / std::max(sigma * sigma, 1e-8));
-      }
-      if (vote.weight <= 0.0) continue;
-      const Eigen::Vector2d refined = vote.sum / vote.weight;
-      solution.poses[r].x = refined.x();
-      solution.poses[r].y = refined.y();
+      solution.poses[r].theta = refined_heading(solution, r, robots, links, options);
+      const Eigen::Vector2d p = refined_position(solution, r, robots, links, options);
+      solution.poses[r].x = p.x();
+      solution.poses[r].y = p.y();
     }
 }
 

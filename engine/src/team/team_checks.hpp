@@ -20,8 +20,8 @@ std::vector<TeamSolution> agreeing_with_scans(std::vector<TeamSolution> solution
                                               const std::vector<TeamRobot>& robots,
                                               const MapFeatures& map, const TeamOptions& options);
 
-/// Moves each fixed solution's positions to the weighted least-squares fit of the robots'
-/// candidates and all the links (headings kept).
+/// Moves each fixed solution's poses to the weighted fit of the robots' candidates and all the
+/// links: positions by least squares, headings averaged with those the back bearings imply.
 void refine(std::vector<TeamSolution>& solutions, const std::vector<TeamRobot>& robots,
             const std::vector<VirtualLink>& links, const TeamOptions& options);
 

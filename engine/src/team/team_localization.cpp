@@ -126,8 +126,10 @@ TeamAnswer localize_team(const std::vector<TeamRobot>& robots,
                                        options.max_partial, &truncated);
   const std::vector<int> checks = links_left_over(links.size(), tree);
   solutions = team_detail::agreeing_with_links(std::move(solutions), links, checks, map, options);
-  solutions = team_detail::agreeing_with_scans(std::move(solutions), robots, map, options);
+  // Refit first: joining pairs moves a robot rigidly with its pair, off its own wall by the
+  // links' error; the fit puts it back before its scan is checked.
   if (options.refine) team_detail::refine(solutions, robots, links, options);
+  solutions = team_detail::agreeing_with_scans(std::move(solutions), robots, map, options);
   TeamAnswer answer = team_detail::answer_from(
       team_detail::ranked_rivals(std::move(solutions), robots, options), count, options);
   answer.links_used = tree;

@@ -98,7 +98,10 @@ std::vector<VirtualLink> measurable_links(const std::vector<Pose2>& poses, const
       if (!line_of_sight(map, a, b)) continue;
       const std::uint64_t link_seed =
           seed == 0 ? 0 : seed * 1000003ull + static_cast<std::uint64_t>(i * robots + j + 1);
-      links.push_back(measure_link(i, j, poses[i], poses[j], camera, link_seed));
+      VirtualLink link = measure_link(i, j, poses[i], poses[j], camera, link_seed);
+      // Noise can carry a length past the camera's limits: that link is not measured.
+      if (link.length_m > camera.max_range_m || link.length_m < camera.min_range_m) continue;
+      links.push_back(link);
     }
   return links;
 }

@@ -50,7 +50,9 @@ struct TeamSensing {
   SonarRing ring;  ///< for TeamSensor::Sonar
   EstimateCandidateOptions estimate;
   CameraModel camera;
-  bool noise = true;  ///< sensor and link noise (false: exact readings and links)
+  /// Sensor and link noise; false: exact readings and links, and no moving average (the
+  /// thesis filtered its real scans only: on exact ones it would round the corners).
+  bool noise = true;
 };
 
 /// One simulated team.

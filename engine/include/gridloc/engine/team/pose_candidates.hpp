@@ -1,9 +1,10 @@
 #pragma once
 /// Candidate configurations of one robot (seed 003 ch. III A-B): every placement of a detected
-/// feature on the map's corners and walls. A corner gives single poses (eq. 3.27 sets the
-/// heading); a wall gives a segment of poses at the wall's normal offset, the heading fixed by
-/// the wall, the position free along it as far as the wall's length and the sensor's range
-/// allow (ch. III B 1).
+/// feature on the map's corners and walls. A corner gives single poses (eqs. 3.10-3.16 place
+/// them; the heading is the turn from the scan's fitted walls to the map's, which eq. 3.27's
+/// angle to the corner approximates); a wall gives a segment of poses at the wall's normal
+/// offset, the heading fixed by the wall, the position free along it as far as the wall's
+/// length allows (ch. III B 1).
 #include <Eigen/Core>
 #include <vector>
 

@@ -48,7 +48,7 @@ struct TeamOptions {
   /// at agreement_tolerance_m); 0 skips the check (the thesis's method).
   double min_agreement = 0.8;
   double agreement_tolerance_m = 0.03;
-  bool refine = true;  ///< average the positions over all links used (ch. III D)
+  bool refine = true;  ///< average the poses over all links used (ch. III D)
   /// Most partial solutions kept while joining pairs; beyond, the answer says truncated.
   std::size_t max_partial = 20000;
 };

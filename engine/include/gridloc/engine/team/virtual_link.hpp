@@ -54,7 +54,8 @@ VirtualLink measure_link(int from, int to, const Pose2& a, const Pose2& b,
 
 /// The links a team at these true poses can measure: every pair within the camera's range
 /// with a line of sight (from the lower index to the higher), noise seeded per link from
-/// seed (0: noise-free).
+/// seed (0: noise-free); a noisy length beyond the camera's limits is left out, as the camera
+/// would fail to measure it.
 std::vector<VirtualLink> measurable_links(const std::vector<Pose2>& poses, const MapFeatures& map,
                                           const CameraModel& camera, std::uint64_t seed);
 
