@@ -54,17 +54,6 @@ TeamSensing sensing_from(const TeamArgs& args) {
   return sensing;
 }
 
-/// The estimator path's placements are as precise as its search lattice, not a corner fit.
-TeamOptions solver_options(const TeamSensing& sensing) {
-  TeamOptions options;
-  options.camera = sensing.camera;
-  if (sensing.sensor != TeamSensor::Ir) {
-    options.gate.placement_sigma_m = 0.05;
-    options.gate.heading_sigma = 3.0 * kDeg;
-  }
-  return options;
-}
-
 TeamCase team_from(const TeamArgs& args, const TeamSimulator& simulator) {
   if (args.poses.empty() == args.robots.empty())
     throw Error("team: give either --poses (simulated) or --robots robots.json (measured)");

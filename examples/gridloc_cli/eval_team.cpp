@@ -41,11 +41,7 @@ TeamProtocolOptions protocol_options(const TeamEvalArgs& args, const TeamEvalInp
   options.robots = args.robots;
   options.trials = inputs.trials;
   options.seed = seed;
-  options.team.camera = sensing.camera;
-  if (sensing.sensor != TeamSensor::Ir) {  // placements as precise as the engine's lattice
-    options.team.gate.placement_sigma_m = 0.05;
-    options.team.gate.heading_sigma = 0.0523598775598;  // 3 deg
-  }
+  options.team = solver_options(sensing);
   return options;
 }
 

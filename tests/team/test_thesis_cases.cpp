@@ -62,7 +62,9 @@ TEST(ThesisCases, AConcaveCornerAndAWallHaveTwoSymmetricSolutions) {
   for (const TeamSolution& solution : answer.solutions) {
     const bool is_truth = std::hypot(solution.poses[0].x - 1.3, solution.poses[0].y - 0.2) < 0.02;
     truth_found += is_truth;
-    if (!is_truth) EXPECT_NEAR(solution.poses[1].y, 3.75 - 3.25, 0.02);
+    if (!is_truth) {
+      EXPECT_NEAR(solution.poses[1].y, 3.75 - 3.25, 0.02);
+    }
   }
   EXPECT_EQ(truth_found, 1);
   for (const RobotAnswer& robot : answer.robots) EXPECT_EQ(robot.places.size(), 2u);

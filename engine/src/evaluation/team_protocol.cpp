@@ -39,6 +39,17 @@ TeamSensor parse_team_sensor(const std::string& name) {
   throw Error("unknown team sensor '" + name + "' (expected ir, laser or sonar)");
 }
 
+TeamOptions solver_options(const TeamSensing& sensing) {
+  TeamOptions options;
+  options.camera = sensing.camera;
+  if (sensing.sensor != TeamSensor::Ir) {
+    options.gate.placement_sigma_m = 0.05;
+    options.gate.heading_sigma = 0.0523598775598;  // 3 deg
+    options.rival_ratio = sensing.estimate.min_score_ratio;
+  }
+  return options;
+}
+
 namespace {
 
 std::unique_ptr<CorrelationEstimator> make_engine(const TeamWorld& world,

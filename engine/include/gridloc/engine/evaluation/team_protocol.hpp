@@ -55,6 +55,12 @@ struct TeamSensing {
   bool noise = true;
 };
 
+/// The solver's options for a team sensing this way: the camera's, and for the estimator path
+/// (laser, sonar) placements as loose as the engine's lattice (5 cm, 3 deg) and rivals down to
+/// the candidates' min_score_ratio (a look-alike's score on a rasterized map falls a few per
+/// cent short of the truth's).
+TeamOptions solver_options(const TeamSensing& sensing);
+
 /// One simulated team.
 struct TeamCase {
   std::vector<Pose2> truth;
