@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "gridloc/engine/evaluation/team_protocol.hpp"
@@ -76,6 +77,25 @@ TEST(ThesisCases, AThirdRobotMakesItUnique) {
   const TeamAnswer answer = chapter_five(truth);
   ASSERT_EQ(answer.verdict, Verdict::Localized);
   for (int r = 0; r < 3; ++r) expect_near(answer.robots[r].pose, truth[r], 0.03, 2.0);
+}
+
+TEST(ThesisCases, OnTheRasterizedTTheThirdRobotStillMakesItUnique) {
+  // The T as an occupancy grid at 2 cm: corners and walls from its traced outline, the IR
+  // cast on its cells.
+  const TeamWorld grid_world = make_team_world(rasterize_polygon_map(*world("t_room").polygons));
+  TeamSensing sensing;
+  sensing.ir.max_range_m = 0.5;
+  sensing.camera.max_range_m = 4.0;
+  sensing.noise = false;
+  const TeamSimulator simulator(grid_world, sensing);
+  const std::vector<Pose2> truth{
+      {1.3, 0.2, 157.5 * kDeg}, {0.15, 3.25, 45 * kDeg}, {1.4, 2.4, 90 * kDeg}};
+  const TeamCase team = simulator.simulate(truth, 1);
+  TeamOptions options;
+  options.camera = sensing.camera;
+  const TeamAnswer answer = localize_team(team.robots, team.links, grid_world.features, options);
+  ASSERT_EQ(answer.verdict, Verdict::Localized);
+  for (int r = 0; r < 3; ++r) expect_near(answer.robots[r].pose, truth[r], 0.04, 3.0);
 }
 
 TEST(ThesisCases, TheExperimentWithTableTwoNoiseLandsWithinTwoCentimetres) {
