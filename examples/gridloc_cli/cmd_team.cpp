@@ -35,11 +35,6 @@ struct TeamArgs {
   bool json = false, exact = false;
 };
 
-TeamWorld load_world(const std::string& path) {
-  if (is_polygon_map_file(path, limits())) return make_team_world(load_polygon_map(path, limits()));
-  return make_team_world(load_ros_map(path, limits()));
-}
-
 TeamSensing sensing_from(const TeamArgs& args) {
   TeamSensing sensing;
   sensing.sensor = parse_team_sensor(args.sensor);
@@ -113,7 +108,7 @@ void write_outputs(const TeamArgs& args, const TeamSimulator& simulator, const T
 }
 
 void run(const TeamArgs& args) {
-  const TeamWorld world = load_world(args.map);
+  const TeamWorld world = load_team_world(args.map);
   const TeamSensing sensing = sensing_from(args);
   const TeamSimulator simulator(world, sensing);
   const TeamCase team = team_from(args, simulator);

@@ -13,17 +13,13 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "team_io.hpp"
 
 namespace gridloc::cli {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-TeamWorld load_world(const std::string& path) {
-  if (is_polygon_map_file(path, limits())) return make_team_world(load_polygon_map(path, limits()));
-  return make_team_world(load_ros_map(path, limits()));
-}
 
 TeamSensing sensing_from(const TeamEvalInputs& inputs) {
   TeamSensing sensing;
@@ -105,7 +101,7 @@ void run_team_eval(const TeamEvalArgs& args, const TeamEvalInputs& inputs, std::
                    bool json, bool quiet) {
   const TeamSensing sensing = sensing_from(inputs);
   std::vector<TeamWorld> worlds;
-  for (const std::string& file : inputs.map_files) worlds.push_back(load_world(file));
+  for (const std::string& file : inputs.map_files) worlds.push_back(load_team_world(file));
   std::vector<std::unique_ptr<TeamSimulator>> simulators;
   std::vector<const TeamSimulator*> pointers;
   for (const TeamWorld& world : worlds) {

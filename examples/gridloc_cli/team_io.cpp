@@ -8,6 +8,8 @@
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/limits.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/polygon_map.hpp"
 #include "gridloc/sensors/readings_io.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
@@ -34,6 +36,11 @@ double number_in(const std::string& text, const std::string& what) {
 }
 
 }  // namespace
+
+TeamWorld load_team_world(const std::string& path) {
+  if (is_polygon_map_file(path, limits())) return make_team_world(load_polygon_map(path, limits()));
+  return make_team_world(load_ros_map(path, limits()));
+}
 
 std::vector<Pose2> parse_team_poses(const std::string& text) {
   std::vector<Pose2> poses;

@@ -9,6 +9,9 @@
 
 namespace gridloc::cli {
 
+/// The team's world from a polygon map file (features exact) or a map_server YAML.
+TeamWorld load_team_world(const std::string& path);
+
 /// "x,y,theta;x,y,theta[;...]" (m, m, rad); throws gridloc::Error naming the robot.
 std::vector<Pose2> parse_team_poses(const std::string& text);
 

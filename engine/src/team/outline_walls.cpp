@@ -2,6 +2,8 @@
 // each remaining piece, neighbouring lines intersected.
 #include "outline_walls.hpp"
 
+#include "wall_geometry.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -13,18 +15,8 @@
 namespace gridloc::detail {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-/// Distance (m) from p to the segment ab.
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
+using team_detail::cross2;
+using team_detail::distance_to_segment;
 
 std::size_t farthest_from(const Polygon& ring, const Eigen::Vector2d& p) {
   std::size_t best = 0;
@@ -47,7 +39,7 @@ void simplify_chain(const Polygon& ring, std::size_t from, std::size_t length, d
     double worst = -1.0;
     std::size_t worst_step = 0;
     for (std::size_t step = 1; step < steps; ++step) {
-      const double dist = segment_distance(ring[(first + step) % n], a, b);
+      const double dist = distance_to_segment(ring[(first + step) % n], a, b);
       if (dist > worst) worst = dist, worst_step = step;
     }
     if (worst <= tolerance) continue;
@@ -76,7 +68,7 @@ std::vector<std::size_t> breakpoints(const Polygon& ring, double tolerance) {
     if (m <= 3) break;
     const auto at =
         static_cast<std::size_t>(std::lower_bound(kept.begin(), kept.end(), anchor) - kept.begin());
-    if (segment_distance(ring[anchor], ring[kept[(at + m - 1) % m]], ring[kept[(at + 1) % m]]) <=
+    if (distance_to_segment(ring[anchor], ring[kept[(at + m - 1) % m]], ring[kept[(at + 1) % m]]) <=
         tolerance) {
       kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(at));
     }
@@ -115,11 +107,11 @@ Eigen::Vector2d join(const Polygon& ring, const WallPiece& before, const WallPie
   const std::size_t n = ring.size();
   const Eigen::Vector2d gap_start = ring[(before.first + before.steps) % n];
   const Eigen::Vector2d fallback = 0.5 * (gap_start + ring[after.first]);
-  const double denom = cross(before.direction, after.direction);
+  const double denom = cross2(before.direction, after.direction);
   if (std::abs(denom) <= 1e-6) return fallback;  // near parallel: a step, no corner
   const Eigen::Vector2d p =
       before.centre +
-      before.direction * (cross(after.centre - before.centre, after.direction) / denom);
+      before.direction * (cross2(after.centre - before.centre, after.direction) / denom);
   const Eigen::Vector2d before_start = ring[before.first];
   const Eigen::Vector2d after_end = ring[(after.first + after.steps) % n];
   if ((p - before_start).dot(before.direction) <= 0.0 ||
