@@ -41,6 +41,7 @@ double distance(const Pose2& a, const Pose2& b) {
 
 TEST(EstimateCandidates, WeightsAreScoresOverTheWinnersAndWeakOnesAreLeftOut) {
   Estimate estimate;
+  estimate.verdict = Verdict::Ambiguous;
   estimate.pose = {1.01, 2.0, 0.1};
   estimate.alternatives = {{{1.0, 2.0, 0.1}, 10.0}, {{5.0, 2.0, 3.0}, 9.5}, {{3.0, 1.0, 0.0}, 7.0}};
   const auto candidates = estimate_candidates(estimate);
@@ -48,8 +49,14 @@ TEST(EstimateCandidates, WeightsAreScoresOverTheWinnersAndWeakOnesAreLeftOut) {
   EXPECT_EQ(candidates[0].pose.x, 1.01);  // the refined winner
   EXPECT_DOUBLE_EQ(candidates[1].weight, 0.95);
   EstimateCandidateOptions one;
-  one.max_candidates = 1;
-  EXPECT_EQ(estimate_candidates(estimate, one).size(), 1u);
+  one.max_candidates = 1;  // two alternatives within the ratio: crowded, no candidate
+  EXPECT_TRUE(estimate_candidates(estimate, one).empty());
+  one.max_candidates = 2;
+  EXPECT_EQ(estimate_candidates(estimate, one).size(), 2u);
+  estimate.verdict = Verdict::NotLocalized;  // not believed: no candidate
+  EXPECT_TRUE(estimate_candidates(estimate).empty());
+  one.skip_not_localized = false;
+  EXPECT_EQ(estimate_candidates(estimate, one).size(), 2u);
   one.min_score_ratio = 0.0;
   test::expect_error([&] { estimate_candidates(estimate, one); }, {"min_score_ratio"});
 }

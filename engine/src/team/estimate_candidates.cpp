@@ -15,6 +15,7 @@ void validate(const EstimateCandidateOptions& options) {
 std::vector<PoseCandidate> estimate_candidates(const Estimate& estimate,
                                                const EstimateCandidateOptions& options) {
   validate(options);
+  if (options.skip_not_localized && estimate.verdict == Verdict::NotLocalized) return {};
   std::vector<Hypothesis> hypotheses = estimate.alternatives;
   if (hypotheses.empty()) hypotheses.push_back({estimate.lattice_pose, estimate.score});
   const double best = hypotheses.front().score;
@@ -23,7 +24,7 @@ std::vector<PoseCandidate> estimate_candidates(const Estimate& estimate,
   for (std::size_t k = 0; k < hypotheses.size(); ++k) {
     const double ratio = hypotheses[k].score / best;
     if (ratio < options.min_score_ratio) continue;
-    if (static_cast<int>(candidates.size()) >= options.max_candidates) break;
+    if (static_cast<int>(candidates.size()) >= options.max_candidates) return {};  // crowded
     PoseCandidate candidate;
     candidate.pose = k == 0 ? estimate.pose : hypotheses[k].pose;
     candidate.weight = ratio;
