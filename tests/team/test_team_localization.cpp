@@ -124,6 +124,21 @@ TEST(TeamLocalization, TheHighestTotalWeightWinsAndCloseRivalsMakeItAmbiguous) {
   EXPECT_EQ(answer.solutions.size(), 2u);
 }
 
+TEST(TeamLocalization, FeaturesInferredFromAGridNeverClaimAUniqueAnswer) {
+  std::vector<TeamRobot> robots{{{at(kTruth[0])}, {}}, {{at(kTruth[1])}, {}}};
+  const auto links = chain_links({kTruth[0], kTruth[1]});
+  MapFeatures inferred;
+  inferred.exact = false;
+  // Engine hypotheses (no feature behind them): unique is unique.
+  EXPECT_EQ(localize_team(robots, links, inferred, exact_options()).verdict, Verdict::Localized);
+  // A feature placement on inferred corners could have missed the true corner.
+  robots[0].candidates[0].feature = 0;
+  const TeamAnswer answer = localize_team(robots, links, inferred, exact_options());
+  EXPECT_EQ(answer.verdict, Verdict::Ambiguous);
+  EXPECT_EQ(answer.solutions.size(), 1u);
+  EXPECT_EQ(answer.robots[0].verdict, Verdict::Ambiguous);
+}
+
 TEST(TeamLocalization, SwappedRobotsAreNamed) {
   // Two robots facing each other 0.8 m apart, each with a candidate at the other's place.
   const Pose2 a{1.0, 1.0, 0.0}, b{1.8, 1.0, kPi};

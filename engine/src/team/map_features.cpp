@@ -89,6 +89,7 @@ MapFeatures occupancy_features(const OccupancyMap& map, const MapFeatureOptions&
   for (CellState cell : map.cells) any_free = any_free || cell == CellState::Free;
   if (!any_free) throw Error("occupancy map has no free cells");
   MapFeatures features;
+  features.exact = false;
   const double cell = map.geometry.resolution;
   const double tolerance = std::max(options.simplify_m, kMinSimplifyCells * cell);
   const double min_wall = std::max(options.min_wall_m, kMinWallCells * cell);

@@ -225,13 +225,47 @@ std::vector<TeamSolution> ranked_rivals(std::vector<TeamSolution> solutions,
   return rivals;
 }
 
-TeamAnswer answer_from(std::vector<TeamSolution> rivals, int robots, const TeamOptions& options) {
+/// Robot pairs (i < j) a rival puts each where the best puts the other.
+std::vector<std::pair<int, int>> swaps_of(const std::vector<TeamSolution>& solutions,
+                                          const TeamOptions& options) {
+  std::vector<std::pair<int, int>> swaps;
+  const auto& best = solutions.front().poses;
+  const auto close = [&](const Pose2& a, const Pose2& b) {
+    return (position(a) - position(b)).norm() <= 2.0 * options.merge_m;
+  };
+  for (std::size_t k = 1; k < solutions.size(); ++k)
+    for (std::size_t i = 0; i < best.size(); ++i)
+      for (std::size_t j = i + 1; j < best.size(); ++j) {
+        const auto& rival = solutions[k].poses;
+        const std::pair<int, int> pair{static_cast<int>(i), static_cast<int>(j)};
+        if (close(rival[i], best[j]) && close(rival[j], best[i]) &&
+            std::find(swaps.begin(), swaps.end(), pair) == swaps.end())
+          swaps.push_back(pair);
+      }
+  return swaps;
+}
+
+/// Whether the solution places a robot by one of its scan's features (not by an estimator's
+/// hypothesis or a link alone).
+bool rests_on_a_feature(const TeamSolution& solution, const std::vector<TeamRobot>& robots) {
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const int c = solution.candidates[r];
+    if (c >= 0 && robots[r].candidates[c].feature >= 0) return true;
+  }
+  return false;
+}
+
+TeamAnswer answer_from(std::vector<TeamSolution> rivals, const std::vector<TeamRobot>& team,
+                       const MapFeatures& map, const TeamOptions& options) {
+  const int robots = static_cast<int>(team.size());
   TeamAnswer answer;
   answer.robots.resize(robots);
   answer.solutions = std::move(rivals);
   if (answer.solutions.empty()) return answer;
   const bool fixed = !answer.solutions.front().slide.moving();
-  answer.verdict = answer.solutions.size() == 1 && fixed ? Verdict::Localized : Verdict::Ambiguous;
+  const bool trusted = map.exact || !rests_on_a_feature(answer.solutions.front(), team);
+  answer.verdict =
+      answer.solutions.size() == 1 && fixed && trusted ? Verdict::Localized : Verdict::Ambiguous;
   for (int r = 0; r < robots; ++r) {
     RobotAnswer& robot = answer.robots[r];
     robot.pose = answer.solutions.front().poses[r];
@@ -242,22 +276,10 @@ TeamAnswer answer_from(std::vector<TeamSolution> rivals, int robots, const TeamO
                        [&](const Pose2& place) { return near(place, pose, options); }))
         robot.places.push_back(pose);
     }
-    robot.verdict =
-        robot.places.size() == 1 && !robot.slides ? Verdict::Localized : Verdict::Ambiguous;
+    robot.verdict = robot.places.size() == 1 && !robot.slides && trusted ? Verdict::Localized
+                                                                         : Verdict::Ambiguous;
   }
-  const TeamSolution& best = answer.solutions.front();
-  for (std::size_t k = 1; k < answer.solutions.size(); ++k)
-    for (int i = 0; i < robots; ++i)
-      for (int j = i + 1; j < robots; ++j) {
-        const auto& rival = answer.solutions[k].poses;
-        const bool swapped =
-            (position(rival[i]) - position(best.poses[j])).norm() <= 2.0 * options.merge_m &&
-            (position(rival[j]) - position(best.poses[i])).norm() <= 2.0 * options.merge_m;
-        const std::pair<int, int> pair{i, j};
-        if (swapped &&
-            std::find(answer.swaps.begin(), answer.swaps.end(), pair) == answer.swaps.end())
-          answer.swaps.push_back(pair);
-      }
+  answer.swaps = swaps_of(answer.solutions, options);
   return answer;
 }
 

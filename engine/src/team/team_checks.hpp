@@ -31,6 +31,7 @@ std::vector<TeamSolution> ranked_rivals(std::vector<TeamSolution> solutions,
                                         const TeamOptions& options);
 
 /// The verdicts, each robot's places and the swaps, from the rivals.
-TeamAnswer answer_from(std::vector<TeamSolution> rivals, int robots, const TeamOptions& options);
+TeamAnswer answer_from(std::vector<TeamSolution> rivals, const std::vector<TeamRobot>& robots,
+                       const MapFeatures& map, const TeamOptions& options);
 
 }  // namespace gridloc::team_detail

@@ -131,7 +131,7 @@ TeamAnswer localize_team(const std::vector<TeamRobot>& robots,
   if (options.refine) team_detail::refine(solutions, robots, links, options);
   solutions = team_detail::agreeing_with_scans(std::move(solutions), robots, map, options);
   TeamAnswer answer = team_detail::answer_from(
-      team_detail::ranked_rivals(std::move(solutions), robots, options), count, options);
+      team_detail::ranked_rivals(std::move(solutions), robots, options), robots, map, options);
   answer.links_used = tree;
   answer.links_used.insert(answer.links_used.end(), checks.begin(), checks.end());
   answer.truncated = truncated;

@@ -36,6 +36,10 @@ struct MapFeatures {
   std::vector<MapCorner> corners;  ///< every vertex whose walls turn by at least the options'
                                    ///< min_turn (straighter vertices are no corner; their walls
                                    ///< stay separate walls)
+  /// True for a polygon map's own corners and walls; false when they were inferred from an
+  /// occupancy grid's outline, which can miss or move a corner (a round pillar, clutter): a
+  /// feature placed on them may then find a wrong place and miss the true one.
+  bool exact = true;
 };
 
 struct MapFeatureOptions {

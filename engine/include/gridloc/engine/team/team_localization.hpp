@@ -64,7 +64,9 @@ struct RobotAnswer {
 };
 
 struct TeamAnswer {
-  /// Localized: one solution, fixed; ambiguous: rivals or a slide; not localized: none.
+  /// Localized: one solution, fixed; ambiguous: rivals or a slide, or (on map features that
+  /// are not exact) a solution resting on a feature placement, which could have missed the
+  /// true place; not localized: none.
   Verdict verdict = Verdict::NotLocalized;
   std::vector<TeamSolution> solutions;  ///< the rivals, best first
   std::vector<RobotAnswer> robots;
