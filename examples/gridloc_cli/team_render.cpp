@@ -483,52 +483,50 @@ void add_map_items(std::vector<plot::LegendItem>& items, const TeamPicture& pict
     items.push_back(plot::filled(kOccupied, "occupied"));
     items.push_back(plot::filled(kUnknown, "unknown"));
   }
-  items.push_back(plot::LegendItem(
+  items.push_back(plot::LegendItem{
       [](cv::Mat& m, const cv::Point2d& p) { corner_dot(m, p + cv::Point2d(8, 0)); },
-      "map corner"));
+      "map corner"});
 }
 
 /// The marks' items, drawn in ink (on the map they take their robot's colour).
 void add_mark_items(std::vector<plot::LegendItem>& items, const TeamPicture& picture) {
-  items.push_back(plot::LegendItem(
-      [](cv::Mat& m, const cv::Point2d& p) {
-        candidate_mark(m, p + cv::Point2d(6, 0), 0.0, plot::kInk);
-      },
-      "candidate pose (tick: heading)"));
-  items.push_back(plot::LegendItem(
-      [](cv::Mat& m, const cv::Point2d& p) {
-        placement_mark(m, p + cv::Point2d(0, 4), p + cv::Point2d(26, 4), std::numbers::pi / 2,
-                       plot::kInk);
-      },
-      "wall placement (poses along a wall)"));
-  items.push_back(plot::LegendItem(
-      [](cv::Mat& m, const cv::Point2d& p) { solution_arrow(m, p, 0.0, plot::kInk); }, "solution"));
+  items.push_back(plot::LegendItem{[](cv::Mat& m, const cv::Point2d& p) {
+                                     candidate_mark(m, p + cv::Point2d(6, 0), 0.0, plot::kInk);
+                                   },
+                                   "candidate pose (tick: heading)"});
+  items.push_back(plot::LegendItem{[](cv::Mat& m, const cv::Point2d& p) {
+                                     placement_mark(m, p + cv::Point2d(0, 4),
+                                                    p + cv::Point2d(26, 4), std::numbers::pi / 2,
+                                                    plot::kInk);
+                                   },
+                                   "wall placement (poses along a wall)"});
+  items.push_back(plot::LegendItem{
+      [](cv::Mat& m, const cv::Point2d& p) { solution_arrow(m, p, 0.0, plot::kInk); }, "solution"});
   items.push_back(
-      plot::LegendItem([](cv::Mat& m, const cv::Point2d& p) { rival_arrow(m, p, 0.0, plot::kInk); },
-                       "rival solution"));
+      plot::LegendItem{[](cv::Mat& m, const cv::Point2d& p) { rival_arrow(m, p, 0.0, plot::kInk); },
+                       "rival solution"});
   const bool slides = std::any_of(picture.solutions.begin(), picture.solutions.end(),
                                   [](const TeamSolution& s) { return s.slide.moving(); });
   if (slides) {
-    items.push_back(plot::LegendItem(
-        [](cv::Mat& m, const cv::Point2d& p) {
-          double_arrow(m, p, p + cv::Point2d(30, 0), plot::kInk);
-        },
-        "slide (the solution moves along)"));
+    items.push_back(plot::LegendItem{[](cv::Mat& m, const cv::Point2d& p) {
+                                       double_arrow(m, p, p + cv::Point2d(30, 0), plot::kInk);
+                                     },
+                                     "slide (the solution moves along)"});
   }
 }
 
 /// The links' items, the truth's, and one swatch per robot.
 void add_link_and_robot_items(std::vector<plot::LegendItem>& items, const TeamPicture& picture) {
   items.push_back(plot::stroke(plot::kInk, 2, "link used (its length)"));
-  items.push_back(plot::LegendItem(
-      [](cv::Mat& m, const cv::Point2d& p) {
-        plot::dashed_line(m, p, p + cv::Point2d(26, 0), kLinkUnused, 2, 3.0);
-      },
-      "link not used"));
+  items.push_back(plot::LegendItem{[](cv::Mat& m, const cv::Point2d& p) {
+                                     plot::dashed_line(m, p, p + cv::Point2d(26, 0), kLinkUnused, 2,
+                                                       3.0);
+                                   },
+                                   "link not used"});
   if (!picture.truth.empty()) {
-    items.push_back(plot::LegendItem(
+    items.push_back(plot::LegendItem{
         [](cv::Mat& m, const cv::Point2d& p) { plot::truth_marker(m, p + cv::Point2d(2, 0), 0.0); },
-        "truth"));
+        "truth"});
   }
   for (std::size_t r = 0; r < picture.candidates.size(); ++r) {
     items.push_back(
