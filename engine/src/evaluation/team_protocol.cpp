@@ -1,11 +1,9 @@
 #include "gridloc/engine/evaluation/team_protocol.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "gridloc/grids/error.hpp"
-#include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
