@@ -1,15 +1,18 @@
 // gridloc track: the Localizer run through a CARMEN log, one JSON object per processed scan
 // (JSON Lines) or a progress line and a summary (issue 13).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/log_tracking.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/gfs_odometry.hpp"
 #include "gridloc/sensors/log_split.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
@@ -18,8 +21,12 @@ namespace gridloc::cli {
 namespace {
 
 struct TrackArgs {
-  std::string map, log, prior, odometry = "laser", odometry_noise;
-  bool global = false, json = false, truth = false, prior_from_log = false;
+  std::string map, log, prior, odometry = "laser", odometry_noise, raw_odometry;
+  std::string odometry_error = "0.02,1";
+  double entry_weight = HypothesisWeightOptions{}.entry_weight;
+  double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
+  double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
+  bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
   int every = 1;
   std::size_t start = 0, count = 0;
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
@@ -35,11 +42,24 @@ struct TrackArgs {
 /// What the summary counts over the processed scans.
 struct TrackTally {
   int steps = 0, localized = 0, ambiguous = 0, not_localized = 0, wrong_localized = 0;
+  int rejected_jumps = 0, searches = 0;
   double error_sum_m = 0.0, error_sum_deg = 0.0, time_ms = 0.0;
+  std::vector<double> times_ms;
+  std::vector<int> losses;  ///< lengths (updates) of the runs of answers not `localized`
+  int current_loss = 0;
 
   void add(const TrackStep& step, bool truth) {
     ++steps;
     time_ms += step.timing_ms;
+    times_ms.push_back(step.timing_ms);
+    rejected_jumps += step.status.jump_rejected;
+    searches += step.status.search_finished;
+    if (step.estimate.verdict == Verdict::Localized) {
+      if (current_loss > 0) losses.push_back(current_loss);
+      current_loss = 0;
+    } else {
+      ++current_loss;
+    }
     const Verdict verdict = step.estimate.verdict;
     localized += verdict == Verdict::Localized;
     ambiguous += verdict == Verdict::Ambiguous;
@@ -54,7 +74,15 @@ struct TrackTally {
 nlohmann::json step_json(const TrackStep& step, bool truth) {
   const Estimate& e = step.estimate;
   const nlohmann::json estimate = cli::to_json(e);
+  nlohmann::json search = nullptr;
+  if (step.status.search_slices > 0) {
+    search = {{"slices_done", step.status.search_slices_done},
+              {"slices", step.status.search_slices},
+              {"finished", step.status.search_finished}};
+  }
   nlohmann::json line = {{"index", step.index},
+                         {"search", search},
+                         {"jump_rejected", step.status.jump_rejected},
                          {"time", step.time},
                          {"pose", cli::to_json(e.pose)},
                          {"verdict", to_string(e.verdict)},
@@ -99,7 +127,19 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
       args.resolution > 0.0 ? args.resolution : map.geometry.resolution;
   options.localizer.drive.max_distance_m = args.window_m;
   options.localizer.hypothesis_set.drop_ratio = args.drop_ratio;
+  options.localizer.weights.entry_weight = args.entry_weight;
+  options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
+  options.localizer.research.poses_per_slice = args.poses_per_slice;
+  const OdometryNoise model = parse_odometry_noise(args.odometry_error);
+  options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
+      model.frac;
+  options.localizer.odometry_turn_error_per_m =
+      options.localizer.jump_gate.odometry_turn_error_per_m = model.rad_per_m;
+  if (!args.raw_odometry.empty()) {
+    options.raw_odometry = scan_odometry_from_gfs(log, load_gfs_scans(args.raw_odometry, limits()));
+  }
   options.laser.max_range = args.max_range;
+  options.laser.fuse_drive = args.fuse_drive;
   options.odometry = parse_odometry_source(args.odometry);
   if (!args.odometry_noise.empty())
     options.odometry_noise = parse_odometry_noise(args.odometry_noise);
@@ -123,13 +163,29 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   return options;
 }
 
-void print_summary(const TrackTally& tally, bool truth) {
+/// The q-quantile of `values` (nearest rank); 0 for none.
+template <class T>
+double quantile(std::vector<T> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return static_cast<double>(values[std::clamp<std::size_t>(rank, 1, values.size()) - 1]);
+}
+
+void print_summary(TrackTally tally, bool truth) {
   std::fprintf(stderr, "\n");
+  if (tally.current_loss > 0) tally.losses.push_back(tally.current_loss);
   std::printf(
       "%d scans: %d localized, %d ambiguous, %d not localized; %.1f ms per update (%.1f/s)\n",
       tally.steps, tally.localized, tally.ambiguous, tally.not_localized,
       tally.time_ms / std::max(1, tally.steps),
       tally.time_ms > 0.0 ? 1000.0 * tally.steps / tally.time_ms : 0.0);
+  std::printf(
+      "update: median %.1f ms, p99 %.1f ms, max %.1f ms; %d searches finished, %d jumps "
+      "rejected; %zu losses, median %.0f and longest %.0f updates\n",
+      quantile(tally.times_ms, 0.5), quantile(tally.times_ms, 0.99), quantile(tally.times_ms, 1.0),
+      tally.searches, tally.rejected_jumps, tally.losses.size(), quantile(tally.losses, 0.5),
+      quantile(tally.losses, 1.0));
   if (truth && tally.localized > 0) {
     std::printf("localized: mean error %.3f m, %.2f deg; %d beyond 10 cm or 2 deg\n",
                 tally.error_sum_m / tally.localized, tally.error_sum_deg / tally.localized,
@@ -233,16 +289,37 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
                   "laser (the laser lines' pose fields) | odom (the ODOM lines)")
       ->capture_default_str();
   cmd->add_option("--odometry-noise", args.odometry_noise,
-                  "seeded systematic odometry error FRAC,DEG_PER_M (length share, heading drift "
-                  "per metre), for logs whose poses are corrected");
+                  "seeded systematic odometry error FRAC,DEG_PER_M[,SLIP_EVERY_M] (length share, "
+                  "heading drift per metre, a 0.3 m / 10 deg slip every ~SLIP_EVERY_M m), for "
+                  "logs whose poses are corrected");
   cmd->add_option("--seed", args.seed, "seed of --odometry-noise")->capture_default_str();
+  cmd->add_option("--raw-odometry", args.raw_odometry,
+                  "the robot's own odometry from a GMapping .gfs file of the same run (its "
+                  "LASER_READING poses, paired scan by scan with the log)");
+  cmd->add_option("--odometry-error", args.odometry_error,
+                  "the tracker's odometry error model FRAC,DEG_PER_M: how fast its places' "
+                  "covariances grow, and what the jump gate allows")
+      ->capture_default_str();
+  cmd->add_option("--entry-weight", args.entry_weight,
+                  "the prior share of a place a re-search proposes against the tracked ones")
+      ->capture_default_str();
+  cmd->add_option("--evidence-per-scan", args.evidence_per_scan,
+                  "log-likelihood per unit of a window's normalized score")
+      ->capture_default_str();
+  cmd->add_option("--poses-per-slice", args.poses_per_slice,
+                  "a re-search runs one heading slice of about this many lattice poses per "
+                  "update (0: the whole search at once)")
+      ->capture_default_str();
   cmd->add_option("--max-range", args.max_range, "laser returns beyond this are no return (m)")
       ->capture_default_str();
   cmd->add_option("--resolution", args.resolution,
                   "translation step and grid cell (m; 0: the map's cell)")
       ->capture_default_str();
+  cmd->add_flag("--fuse-drive", args.fuse_drive,
+                "fuse each scan with the drive window's earlier scans (--drive-window-m) into "
+                "one observation; off: each scan alone, the places' weights add them up");
   cmd->add_option("--drive-window-m", args.window_m,
-                  "scans up to this far back along the path join the latest")
+                  "--fuse-drive: scans up to this far back along the path join the latest")
       ->capture_default_str();
   cmd->add_option("--trials", args.trial_count,
                   "with --global: this many global localizations from seeded starts, each "

@@ -16,7 +16,9 @@ nlohmann::json to_json(const Pose2& pose) {
 nlohmann::json to_json(const Estimate& estimate) {
   nlohmann::json alternatives = nlohmann::json::array();
   for (const auto& hypothesis : estimate.alternatives) {
-    alternatives.push_back({{"pose", to_json(hypothesis.pose)}, {"score", hypothesis.score}});
+    nlohmann::json alternative = {{"pose", to_json(hypothesis.pose)}, {"score", hypothesis.score}};
+    if (!std::isnan(hypothesis.weight)) alternative["weight"] = hypothesis.weight;
+    alternatives.push_back(std::move(alternative));
   }
   nlohmann::json covariance = nlohmann::json::array();
   for (int r = 0; r < 3; ++r) {

@@ -46,19 +46,30 @@ SonarSimOptions parse_noise(const std::string& text) {
 }
 
 OdometryNoise parse_odometry_noise(const std::string& text) {
-  const std::size_t comma = text.find(',');
   OdometryNoise noise;
+  std::vector<double> fields;
   try {
-    if (comma == std::string::npos) throw std::invalid_argument(text);
-    std::size_t used = 0;
-    noise.frac = std::stod(text.substr(0, comma), &used);
-    const std::string rest = text.substr(comma + 1);
-    std::size_t used_rest = 0;
-    noise.rad_per_m = deg2rad(std::stod(rest, &used_rest));
-    if (used != comma || used_rest != rest.size()) throw std::invalid_argument(text);
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = text.find(',', from);
+      const std::string field =
+          text.substr(from, comma == std::string::npos ? comma : comma - from);
+      std::size_t used = 0;
+      fields.push_back(std::stod(field, &used));
+      if (used != field.size()) throw std::invalid_argument(text);
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    if (fields.size() < 2 || fields.size() > 3) throw std::invalid_argument(text);
   } catch (const std::exception&) {
-    throw Error("--odometry-noise must be FRAC,DEG_PER_M (e.g. 0.02,1), not '" + text + "'");
+    throw Error(
+        "--odometry-noise must be FRAC,DEG_PER_M or FRAC,DEG_PER_M,SLIP_EVERY_M (e.g. "
+        "0.02,1 or 0.05,5,50), not '" +
+        text + "'");
   }
+  noise.frac = fields[0];
+  noise.rad_per_m = deg2rad(fields[1]);
+  if (fields.size() == 3) noise.slip_every_m = fields[2];
   return noise;
 }
 

@@ -63,6 +63,10 @@ std::vector<Pose2> odometry_of(const CarmenLog& log, const std::vector<std::size
   path.reserve(scans.size());
   for (std::size_t index : scans) {
     const LaserRecord& record = log.lasers[index];
+    if (!options.raw_odometry.empty()) {
+      path.push_back(options.raw_odometry[index]);
+      continue;
+    }
     path.push_back(options.odometry == OdometrySource::Laser
                        ? record.robot_pose
                        : odom_at(log.odometry, record.timestamp));
@@ -94,6 +98,7 @@ TrackStep observe(Localizer& localizer, const LaserRecord& record, std::size_t i
   step.index = index;
   step.time = record.timestamp;
   step.estimate = localizer.estimate();
+  step.status = localizer.status();
   measure_error(step, record.robot_pose);
   return step;
 }
@@ -112,7 +117,13 @@ void validate(const LogTrackingOptions& options, const CarmenLog& log) {
                   " scans or not after the one before");
     }
   }
-  if (options.odometry == OdometrySource::Odom) check_odom_lines(log);
+  if (options.odometry == OdometrySource::Odom && options.raw_odometry.empty()) {
+    check_odom_lines(log);
+  }
+  if (!options.raw_odometry.empty() && options.raw_odometry.size() != log.lasers.size()) {
+    throw Error("raw odometry: " + std::to_string(options.raw_odometry.size()) +
+                " poses for the log's " + std::to_string(log.lasers.size()) + " scans");
+  }
   if (options.odometry_noise) validate(*options.odometry_noise);
   if (options.prior) {
     const Pose2& p = *options.prior;

@@ -43,8 +43,21 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.max_range_slack_m, "must be finite and >= 0");
   require(finite_at_least(options.reseed_after_m, 0.0), "reseed_after_m", options.reseed_after_m,
           "must be finite and >= 0");
+  require(options.odometry_score_slack >= 0.0 && options.odometry_score_slack < 1.0,
+          "odometry_score_slack", options.odometry_score_slack, "must lie in [0, 1)");
+  require(finite_at_least(options.localized_sigma_m, 0.0), "localized_sigma_m",
+          options.localized_sigma_m, "must be finite and >= 0");
+  require(finite_at_least(options.localized_sigma_rad, 0.0), "localized_sigma_rad",
+          options.localized_sigma_rad, "must be finite and >= 0");
+  require(options.miss_fit_ratio >= 0.0 && options.miss_fit_ratio <= 1.0, "miss_fit_ratio",
+          options.miss_fit_ratio, "must lie in [0, 1]");
+  require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
+          options.odometry_turn_error_per_rad, "must be finite and >= 0");
   validate(options.drive);
   validate(options.hypothesis_set);
+  validate(options.weights);
+  validate(options.jump_gate);
+  validate(options.research);
   return options;
 }
 
@@ -99,6 +112,7 @@ void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_
   state.estimate = e;
   state.set_odometry = taken_at;
   state.travelled_m = 0.0;
+  state.turned_rad = 0.0;
   state.misses = e.verdict == Verdict::NotLocalized ? state.misses + 1 : 0;
 }
 
@@ -106,12 +120,26 @@ void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_
 
 Localizer::Localizer(OccupancyMap map, SonarRing ring, LocalizerOptions options)
     : options_(checked(options)),
-      estimator_(std::move(map), ring, with_drive_reach(options_, ring)) {}
+      estimator_(std::move(map), ring, with_drive_reach(options_, ring)) {
+  state_.gate = JumpGate(options_.jump_gate);
+}
 
 Localizer::Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions options)
     : options_(checked(options)),
       laser_(laser),
-      estimator_(std::move(map), with_laser_reach(options_, laser)) {}
+      estimator_(std::move(map), with_laser_reach(options_, laser)) {
+  state_.gate = JumpGate(options_.jump_gate);
+  if (options_.research.resolution > estimator_.options().resolution) {
+    CorrelationOptions coarse = estimator_.options();
+    coarse.resolution = options_.research.resolution;
+    coarse_.emplace(estimator_.map(), coarse);
+  }
+}
+
+const CorrelationEstimator& Localizer::search_estimator(bool first) const {
+  const bool coarse = coarse_ && (!first || options_.research.coarse_first_search);
+  return coarse ? *coarse_ : estimator_;
+}
 
 void validate(const LaserSensor& laser) {
   if (!finite(laser.mount)) throw Error("laser: the mount pose must be finite");
@@ -129,6 +157,7 @@ void Localizer::reset() {
   const std::optional<Pose2> odometry = state_.odometry;
   state_ = LocalizerState{};
   state_.odometry = odometry;
+  state_.gate = JumpGate(options_.jump_gate);
 }
 
 void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) {
@@ -141,7 +170,10 @@ void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) 
   state_.set.hypotheses.push_back({pose, covariance, 0.0, Estimate{}});
   state_.set_odometry = state_.odometry.value_or(Pose2{});
   state_.travelled_m = 0.0;
+  state_.turned_rad = 0.0;
   state_.misses = 0;
+  state_.search.reset();
+  state_.gate.reset();
 }
 
 void Localizer::add_odometry(const Pose2& odometry) {
@@ -150,6 +182,7 @@ void Localizer::add_odometry(const Pose2& odometry) {
   if (state_.odometry) {
     const Pose2 step = relative_pose(*state_.odometry, odometry);
     state_.travelled_m += std::hypot(step.x, step.y);
+    state_.turned_rad += std::abs(step.theta);
   }
   state_.odometry = odometry;
 }
@@ -183,7 +216,9 @@ void Localizer::add_observation(double time_s, const RangeScan& scan) {
   }
   const Pose2 taken_at = next.odometry.value_or(Pose2{});
   next.scans.push_back({taken_at, clipped(scan, *laser_)});
-  const FusedScans fused = fuse_scans(next.scans, laser_->mount, laser_->model, options_.drive);
+  DriveWindowOptions drive = options_.drive;
+  if (!laser_->fuse_drive) drive.max_firings = 1;
+  const FusedScans fused = fuse_scans(next.scans, laser_->mount, laser_->model, drive);
   keep_latest(next.scans, fused.scans);
   Observation observation;
   observation.points = fused.points;
@@ -192,70 +227,216 @@ void Localizer::add_observation(double time_s, const RangeScan& scan) {
 
 void Localizer::localize(LocalizerState next, const Pose2& taken_at,
                          const Observation& observation) {
-  const double travelled_before = next.travelled_m;
   // The searches run without the lock, so readers get the previous estimate meanwhile.
+  const double travelled_before = next.travelled_m, turned_before = next.turned_rad;
   next.since_global_m += next.travelled_m;
-  const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
-  const bool lost = next.misses >= options_.misses_before_global;
-  std::vector<TrackedHypothesis> candidates = follow(next, taken_at, observation);
-  std::optional<Estimate> global;
-  if (candidates.empty() || lost || (ambiguous && next.since_global_m >= options_.reseed_after_m)) {
-    // A lone track, unsure but not lost: only seeds near it join (odometry vouches for that
-    // place; a look-alike across the building does not displace the track).
-    const bool near_only = next.set.hypotheses.size() == 1 && !candidates.empty() && !lost;
-    global = search_globally(observation, candidates, near_only);
-    next.since_global_m = 0.0;
-    next.misses = 0;
+  next.since_weights_m += next.travelled_m;
+  next.since_weights_rad += next.turned_rad;
+  std::vector<TrackedHypothesis> tracked = follow(next, taken_at, observation);
+  const HypothesisWeightOptions& weights = options_.weights;
+  if (!next.estimate || next.since_weights_m >= weights.update_min_m ||
+      next.since_weights_rad >= weights.update_min_rad) {
+    add_evidence(tracked, weights);  // a standstill repeats the view: no new evidence
+    next.since_weights_m = next.since_weights_rad = 0.0;
   }
-  merge_and_prune(candidates, options_.hypothesis_set);
-  next.set = {std::move(candidates)};
-  const Estimate e = next.set.hypotheses.empty()
-                         ? *global  // the global search was run and is not localized
-                         : set_estimate(next.set);
+  next.status = {};
+  const std::optional<Estimate> searched = advance_search(next, tracked, taken_at, observation);
+  merge_and_prune_weighted(tracked, options_.hypothesis_set, weights);
+  next.set = {std::move(tracked)};
+  Estimate e = next.set.hypotheses.empty() ? searched.value_or(next.estimate.value_or(Estimate{}))
+                                           : weighted_estimate(next.set.hypotheses, weights);
+  if (next.set.hypotheses.empty()) e.verdict = Verdict::NotLocalized;
+  if (e.verdict == Verdict::Localized && !next.gate.admit({e.pose, e.covariance, taken_at})) {
+    e.verdict = Verdict::NotLocalized;
+    next.status.jump_rejected = true;
+  }
   take_estimate(next, e, taken_at);
   std::unique_lock lock(mutex_);
   // Odometry that arrived during the search is kept, with the path it added.
   next.travelled_m += state_.travelled_m - travelled_before;
+  next.turned_rad += state_.turned_rad - turned_before;
   next.odometry = state_.odometry;
   state_ = std::move(next);
 }
 
-Estimate Localizer::search_globally(const Observation& observation,
-                                    std::vector<TrackedHypothesis>& candidates,
-                                    bool near_only) const {
-  const HypothesisSetOptions& set_options = options_.hypothesis_set;
-  const Estimate global = estimator_.estimate(observation, estimator_.global_window(observation),
-                                              set_options.max_hypotheses + 1);
-  if (global.verdict == Verdict::NotLocalized) return global;
-  const std::vector<TrackedHypothesis> tracked = candidates;
-  const auto near_tracked = [&](const TrackedHypothesis& seed) {
-    return std::any_of(tracked.begin(), tracked.end(), [&](const TrackedHypothesis& h) {
-      return std::hypot(seed.pose.x - h.pose.x, seed.pose.y - h.pose.y) <= options_.max_half_xy_m;
+std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
+                                                  std::vector<TrackedHypothesis>& tracked,
+                                                  const Pose2& taken_at,
+                                                  const Observation& observation) const {
+  const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
+  const bool lost = tracked.empty() || tracked.front().misses >= options_.misses_before_global;
+  if (!next.search && (lost || (ambiguous && next.since_global_m >= options_.reseed_after_m))) {
+    const CorrelationEstimator& searcher = search_estimator(!next.estimate);
+    const SearchWindow global = searcher.global_window(observation);
+    const int slices = next.estimate
+                           ? slice_count(searcher.lattice(observation, global), options_.research)
+                           : 1;  // the first observation's search answers at once
+    const int seeds = options_.hypothesis_set.max_hypotheses + 1;
+    const int peaks =
+        slices == 1 ? (coarse_ ? 2 * seeds : seeds) : options_.research.peaks_per_slice;
+    next.search.emplace(observation, taken_at, global, slices, peaks);
+    next.since_global_m = 0.0;
+  }
+  if (!next.search) return std::nullopt;
+  const bool first = !next.estimate;
+  const CorrelationEstimator& searcher = search_estimator(first);
+  next.search->run(searcher, first ? next.search->slices() : options_.research.slices_per_update);
+  next.status.search_slices_done = next.search->slices_done();
+  next.status.search_slices = next.search->slices();
+  if (!next.search->done()) return std::nullopt;
+  Estimate global = next.search->result(searcher.options());
+  const bool coarse = &searcher != &estimator_;
+  if (coarse) {  // coarse places: their windows span a few coarse cells; the fine windows and
+                 // the weights, not the coarse verdict, decide
+    const double cell = searcher.options().resolution;
+    const double step = searcher.global_window(next.search->observation()).step_theta;
+    global.covariance = Eigen::Vector3d(cell * cell, cell * cell, 4.0 * step * step).asDiagonal();
+  }
+  if (coarse || global.verdict != Verdict::NotLocalized) {
+    join(global, *next.search, tracked, taken_at, observation);
+  }
+  next.search.reset();
+  next.status.search_finished = true;
+  for (TrackedHypothesis& h : tracked) h.misses = 0;  // a new search: count afresh
+  return global;
+}
+
+void Localizer::join(const Estimate& global, const SlicedSearch& search,
+                     std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
+                     const Observation& observation) const {
+  const Pose2 moved = relative_pose(search.odometry(), taken_at);
+  const std::vector<TrackedHypothesis> before = tracked;  // the entry weights refer to these
+  const auto meets = [&](const TrackedHypothesis& seed) {
+    return std::any_of(before.begin(), before.end(), [&](const TrackedHypothesis& h) {
+      return std::hypot(seed.pose.x - h.pose.x, seed.pose.y - h.pose.y) <=
+                 options_.hypothesis_set.merge_xy &&
+             std::abs(normalize_angle(seed.pose.theta - h.pose.theta)) <=
+                 options_.hypothesis_set.merge_theta;
     });
   };
-  for (TrackedHypothesis& seed : seed_hypotheses(global, set_options).hypotheses) {
-    if (!near_only || near_tracked(seed)) candidates.push_back(std::move(seed));
+  for (TrackedHypothesis seed : seed_hypotheses(global, options_.hypothesis_set).hypotheses) {
+    std::optional<TrackedHypothesis> followed =
+        follow_one(std::move(seed), moved, std::hypot(moved.x, moved.y), observation);
+    if (!followed || meets(*followed)) continue;
+    followed->log_weight =
+        entry_log_weight(before, followed->estimate.normalized_score, options_.weights);
+    tracked.push_back(std::move(*followed));
   }
-  return global;
 }
 
 std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, const Pose2& taken_at,
                                                  const Observation& observation) const {
   const Pose2 moved = relative_pose(next.set_odometry, taken_at);
-  const SearchWindow global = estimator_.global_window(observation);
   std::vector<TrackedHypothesis> followed;
   for (const TrackedHypothesis& hypothesis : next.set.hypotheses) {
-    const std::optional<SearchWindow> window =
-        window_around(hypothesis, moved, next.travelled_m, global);
-    if (!window) continue;
-    Estimate e = estimator_.estimate(observation, *window);
-    // A window that explains nothing does not move the hypothesis (its winner is noise).
-    const bool lost = e.verdict == Verdict::NotLocalized;
-    const Pose2 pose = lost ? window->center : e.pose;
-    const Eigen::Matrix3d covariance = lost ? hypothesis.covariance : e.covariance;
-    followed.push_back({pose, covariance, e.score, std::move(e)});
+    std::optional<TrackedHypothesis> carried =
+        follow_one(hypothesis, moved, next.travelled_m, observation);
+    if (carried) followed.push_back(std::move(*carried));
   }
   return followed;
+}
+
+std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothesis,
+                                                       const Pose2& moved, double travelled_m,
+                                                       const Observation& observation) const {
+  hypothesis.pose = compose(hypothesis.pose, moved);
+  if (!on_map(estimator_.map(), hypothesis.pose)) return std::nullopt;
+  const double xy = options_.odometry_error_per_m * travelled_m;
+  const double theta = options_.odometry_turn_error_per_m * travelled_m +
+                       options_.odometry_turn_error_per_rad * std::abs(moved.theta);
+  const double cap = options_.max_half_xy_m * options_.max_half_xy_m;  // a lost place's bound
+  Eigen::Matrix3d& covariance = hypothesis.covariance;
+  covariance(0, 0) = std::min(covariance(0, 0) + xy * xy, cap);
+  covariance(1, 1) = std::min(covariance(1, 1) + xy * xy, cap);
+  covariance(2, 2) =
+      std::min(covariance(2, 2) + theta * theta, std::numbers::pi * std::numbers::pi);
+  const SearchWindow global = estimator_.global_window(observation);
+  SearchWindow window = window_around(hypothesis, global);
+  Estimate e = search_window(observation, window);
+  if (e.on_window_edge && hypothesis.confirmed) {  // the best may lie beyond (a slip): look
+                                                   // once more, twice as wide
+    window.half_xy =
+        std::min(2.0 * window.half_xy, std::max(options_.max_half_xy_m, window.half_xy));
+    window.half_theta = std::min(2.0 * window.half_theta, std::numbers::pi);
+    e = search_window(observation, window);
+  }
+  place(hypothesis, e, observation, global);
+  hypothesis.score = e.score;
+  hypothesis.estimate = std::move(e);
+  return hypothesis;
+}
+
+void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
+                      const SearchWindow& global) const {
+  // A window always finds something: one scoring far below the place's usual fit explains
+  // nothing there (a miss), and does not move the place.
+  const bool miss = hypothesis.usual_fit > 0.0
+                        ? e.normalized_score < options_.miss_fit_ratio * hypothesis.usual_fit
+                        : e.verdict == Verdict::NotLocalized;
+  if (miss) {
+    ++hypothesis.misses;
+    e.verdict = Verdict::NotLocalized;
+    return;
+  }
+  hypothesis.misses = 0;
+  hypothesis.usual_fit = hypothesis.usual_fit > 0.0
+                             ? 0.9 * hypothesis.usual_fit + 0.1 * e.normalized_score
+                             : e.normalized_score;
+  // Where the odometry carried it, or within two cells: when that scores as well as the
+  // window's winner, the scan does not move the place (along a corridor it cannot).
+  const Estimate near = best_near(hypothesis.pose, observation, global);
+  const bool odometry_holds = near.score >= (1.0 - options_.odometry_score_slack) * e.score;
+  const bool same =
+      std::hypot(near.pose.x - e.pose.x, near.pose.y - e.pose.y) <=
+          2.0 * estimator_.options().resolution &&
+      std::abs(normalize_angle(near.pose.theta - e.pose.theta)) <= 2.0 * global.step_theta;
+  if (e.verdict == Verdict::Localized && (same || !odometry_holds)) {
+    hypothesis.pose = e.pose;
+    hypothesis.covariance = e.covariance;
+    hypothesis.confirmed = true;
+    return;
+  }
+  if (!odometry_holds) {  // look-alikes in the window, and the odometry's place is not one
+    hypothesis.pose = e.pose;
+    e.verdict = Verdict::NotLocalized;
+    return;
+  }
+  // The scan fits the odometry's place as well as any: the place stays `localized` while
+  // its grown covariance is tight.
+  hypothesis.pose = near.pose;
+  const Eigen::Matrix3d& c = hypothesis.covariance;
+  const bool tight = std::sqrt(std::max(c(0, 0), c(1, 1))) <= options_.localized_sigma_m &&
+                     std::sqrt(c(2, 2)) <= options_.localized_sigma_rad;
+  e.verdict = tight && hypothesis.confirmed ? Verdict::Localized : Verdict::NotLocalized;
+}
+
+Estimate Localizer::search_window(const Observation& observation,
+                                  const SearchWindow& window) const {
+  const double cell = coarse_ ? coarse_->options().resolution : 0.0;
+  if (!coarse_ || window.half_xy <= 3.0 * cell) return estimator_.estimate(observation, window);
+  // A wide window: its best place on the coarse copy, then within two coarse cells of it on
+  // the tracker's grids.
+  SearchWindow wide = window;
+  wide.step_xy = cell;
+  wide.step_theta = std::max(window.step_theta, coarse_->global_window(observation).step_theta);
+  const Estimate rough = coarse_->estimate(observation, wide, 1);
+  SearchWindow near = window;
+  near.center = rough.pose;
+  near.half_xy = 2.0 * cell;
+  near.half_theta =
+      std::min(window.half_theta, std::max(2.0 * wide.step_theta, options_.min_half_theta));
+  return estimator_.estimate(observation, near);
+}
+
+Estimate Localizer::best_near(const Pose2& pose, const Observation& observation,
+                              const SearchWindow& global) const {
+  SearchWindow near;
+  near.center = pose;
+  near.step_xy = estimator_.options().resolution;
+  near.step_theta = global.step_theta;
+  near.half_xy = 2.0 * near.step_xy;
+  near.half_theta = 2.0 * near.step_theta;
+  return estimator_.estimate(observation, near, 1);
 }
 
 Estimate Localizer::estimate() const {
@@ -264,26 +445,29 @@ Estimate Localizer::estimate() const {
   return *state_.estimate;
 }
 
+LocalizerStatus Localizer::status() const {
+  std::shared_lock lock(mutex_);
+  return state_.status;
+}
+
 /// The heading step is the global window's (5 deg for sonar; for a scan, about a cell at its
 /// farthest return).
-std::optional<SearchWindow> Localizer::window_around(const TrackedHypothesis& hypothesis,
-                                                     const Pose2& moved, double travelled_m,
-                                                     const SearchWindow& global) const {
+SearchWindow Localizer::window_around(const TrackedHypothesis& hypothesis,
+                                      const SearchWindow& global) const {
   const Eigen::Matrix3d& covariance = hypothesis.covariance;
   const double sigma_xy = std::sqrt(std::max(covariance(0, 0), covariance(1, 1)));
-  const double half_xy =
-      options_.prior_sigmas * sigma_xy + options_.odometry_error_per_m * travelled_m;
   SearchWindow window;
-  window.center = compose(hypothesis.pose, moved);
-  if (half_xy > options_.max_half_xy_m || !on_map(estimator_.map(), window.center)) {
-    return std::nullopt;
-  }
+  window.center = hypothesis.pose;
   window.step_xy = estimator_.options().resolution;
   window.step_theta = global.step_theta;
-  window.half_xy = std::max(half_xy, options_.min_half_xy_m);
-  const double half_theta = options_.prior_sigmas * std::sqrt(covariance(2, 2)) +
-                            options_.odometry_turn_error_per_m * travelled_m;
-  window.half_theta = std::clamp(half_theta, options_.min_half_theta, std::numbers::pi);
+  // A place its last window missed is looked for twice as wide (further: the re-search).
+  const double widen = hypothesis.misses > 0 ? 2.0 : 1.0;
+  window.half_xy = std::clamp(options_.prior_sigmas * sigma_xy,
+                              std::min(widen * options_.min_half_xy_m, options_.max_half_xy_m),
+                              options_.max_half_xy_m);
+  window.half_theta =
+      std::clamp(options_.prior_sigmas * std::sqrt(covariance(2, 2)),
+                 std::min(widen * options_.min_half_theta, std::numbers::pi), std::numbers::pi);
   return window;
 }
 

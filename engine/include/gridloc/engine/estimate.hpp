@@ -1,5 +1,6 @@
 #pragma once
 /// What an estimator returns, and where it searches.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct SearchWindow {
 struct Hypothesis {
   Pose2 pose;
   double score = 0.0;
+  /// The Localizer's posterior share of this place (its tracked hypotheses' weights sum to
+  /// 1); NaN where no tracker weighed it (a single search's alternatives).
+  double weight = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SearchStats {

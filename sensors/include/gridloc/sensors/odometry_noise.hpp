@@ -11,6 +11,11 @@ namespace gridloc {
 struct OdometryNoise {
   double frac = 0.02;                  ///< sigma of the run's length scale error (a share)
   double rad_per_m = 0.0174532925199;  ///< sigma of its heading drift (rad per metre)
+  /// Slips (issue 34): on average every this many metres (exponential gaps, seeded) the
+  /// odometry jumps by slip_m in a random direction and slip_rad either way; 0: no slips.
+  double slip_every_m = 0.0;
+  double slip_m = 0.3;
+  double slip_rad = 0.174532925199;  ///< 10 deg
 };
 
 /// Checks the noise; throws gridloc::Error naming the field (finite, >= 0).

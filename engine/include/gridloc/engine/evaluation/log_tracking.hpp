@@ -27,6 +27,9 @@ struct LogTrackingOptions {
   LocalizerOptions localizer;
   LaserSensor laser;  ///< its mount is the laser's pose on the robot (identity: at the centre)
   OdometrySource odometry = OdometrySource::Laser;
+  /// The robot's own odometry at each of the log's scans (e.g. scan_odometry_from_gfs);
+  /// non-empty: used instead of `odometry` (the log's poses stay the truth).
+  std::vector<Pose2> raw_odometry;
   /// Seeded systematic error added to the odometry (for logs whose poses are corrected);
   /// unset: the odometry as logged.
   std::optional<OdometryNoise> odometry_noise;
@@ -50,6 +53,7 @@ struct TrackStep {
   Estimate estimate;
   double travelled_m = 0.0;  ///< odometry path length since the first scan run through
   double timing_ms = 0.0;    ///< add_observation's wall time
+  LocalizerStatus status;    ///< a re-search's progress, a rejected jump
   /// Against the log's pose (the corrected one in SLAM-corrected logs): position error (m)
   /// and heading error (degrees).
   double error_m = 0.0;

@@ -35,6 +35,15 @@ struct TrackedHypothesis {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   double score = 0.0;  ///< the latest observation's score at `pose`
   Estimate estimate;   ///< the search that placed it (its window's own verdict)
+  /// The evidence of every observation since it entered (hypothesis_weights.hpp), up to a
+  /// constant shared by the set; `weight` is its share of the set's (sums to 1).
+  double log_weight = 0.0;
+  double weight = 1.0;
+  int misses = 0;          ///< observations in a row whose window explained nothing here
+  bool confirmed = false;  ///< a window placed it `localized` since it entered
+  /// The windows' usual normalized score here (a running mean over the observations that
+  /// placed it): an observation scoring far below it is a miss, whatever its verdict.
+  double usual_fit = 0.0;
 };
 
 struct HypothesisSet {

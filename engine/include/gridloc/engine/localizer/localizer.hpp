@@ -1,10 +1,13 @@
 #pragma once
-/// The Localizer: the facade a navigation stack links (issue 13). Built once from a map and
-/// the sonar ring or a laser, it is fed odometry and sonar firings or scans as the robot
+/// The Localizer: the facade a navigation stack links (issues 13, 34). Built once from a map
+/// and the sonar ring or a laser, it is fed odometry and sonar firings or scans as the robot
 /// drives and keeps the current Estimate: each observation is fused with the drive behind it
 /// (fuse_firings, fuse_scans) and matched by the exact correlation search: globally at
-/// first, then in a window around each hypothesis of a HypothesisSet carried along by
-/// odometry, until the drive leaves one.
+/// first, then in a window around each tracked place, carried along by odometry with a
+/// covariance that grows while nothing confirms it. Each place is weighted by every
+/// observation since it entered (hypothesis_weights.hpp); a re-search after a loss runs in
+/// slices across updates (sliced_search.hpp) and its places enter with a small share; a
+/// `localized` answer must agree with the last one and the odometry (jump_gate.hpp).
 #include <Eigen/Core>
 #include <mutex>
 #include <optional>
@@ -13,6 +16,9 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/engine/localizer/hypothesis_set.hpp"
+#include "gridloc/engine/localizer/hypothesis_weights.hpp"
+#include "gridloc/engine/localizer/jump_gate.hpp"
+#include "gridloc/engine/localizer/sliced_search.hpp"
 #include "gridloc/sensors/drive_fusion.hpp"
 
 namespace gridloc {
@@ -26,16 +32,37 @@ struct LocalizerOptions {
   double prior_sigmas = 3.0;
   /// ...grown by the odometry's error since the prior: this share of the distance driven...
   double odometry_error_per_m = 0.02;
-  /// ...and this heading error per metre driven (rad/m; 1 deg/m).
+  /// ...and this heading error per metre driven (rad/m; 1 deg/m)...
   double odometry_turn_error_per_m = 0.017453292519943295;
+  /// ...and this share of each turn (rad/rad).
+  double odometry_turn_error_per_rad = 0.02;
   double min_half_xy_m = 0.3;    ///< the window's half side is at least this...
-  double max_half_xy_m = 2.0;    ///< ...and at most this (beyond: localize globally)
+  double max_half_xy_m = 2.0;    ///< ...and at most this (a place unconfirmed longer is kept)
   double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this
-  /// After this many observations in a row that were `not localized`, the next one also
-  /// searches the whole map, its seeds competing with the tracked hypotheses (a wrong prior
-  /// or a lost track). `ambiguous` answers are no miss: the look-alikes are tracked until
-  /// the drive tells them apart.
-  int misses_before_global = 10;
+  /// After this many observations in a row whose window explained nothing at the heaviest
+  /// place, a re-search of the whole map starts (a wrong prior or a lost track); its places
+  /// join with HypothesisWeightOptions::entry_weight. `ambiguous` answers are no miss: the
+  /// look-alikes are tracked until the drive tells them apart.
+  int misses_before_global = 3;
+  /// A window whose normalized score falls below this share of the place's usual one
+  /// explains nothing there (a miss, the place not moved), whatever its own verdict: a
+  /// window always finds something, even for a robot carried elsewhere.
+  double miss_fit_ratio = 0.7;
+  /// The odometry's place (the best within two cells of where it carried the place) is kept
+  /// when it scores within this share of the window's winner: the scan does not move a
+  /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
+  /// distance from its prior for the same reason.
+  double odometry_score_slack = 0.02;
+  /// A place the scan does not pin is carried by the odometry, and stays `localized` while
+  /// its grown covariance is within these (1 sigma).
+  double localized_sigma_m = 0.1;
+  double localized_sigma_rad = 0.0290888208666;  ///< 1.67 deg
+  /// How each place's observations weigh, and the share `localized` needs.
+  HypothesisWeightOptions weights;
+  /// A `localized` answer disagreeing with the last one and the odometry is not localized.
+  JumpGateOptions jump_gate;
+  /// Re-searches after the first observation run in slices, a few per update.
+  SlicedSearchOptions research;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
   /// While the answer is `ambiguous`, search the whole map again once the odometry path since
@@ -54,10 +81,23 @@ struct LaserSensor {
   double max_range = 30.0;  ///< returns at or beyond this (m) are no return
   /// How a scan becomes rigid points (hits, or hits and free samples; not rays).
   ScanModelOptions model;
+  /// Fuse each scan with the earlier ones of the drive window (LocalizerOptions::drive), as
+  /// sonar firings are. Off by default: one laser scan is evidence enough, the places'
+  /// weights add the scans up, and an odometry slip inside the window would shift the whole
+  /// fused cloud (a confident wrong answer; issue 34).
+  bool fuse_drive = false;
 };
 
 /// Checks a laser description; throws gridloc::Error naming the field.
 void validate(const LaserSensor& laser);
+
+/// What the latest observation did besides its estimate (for logs, plots and progress).
+struct LocalizerStatus {
+  int search_slices_done = 0;    ///< a re-search under way: slices done...
+  int search_slices = 0;         ///< ...of these (0 and 0: none under way)
+  bool search_finished = false;  ///< a search finished at this observation; its places joined
+  bool jump_rejected = false;    ///< the answer was `localized` but the jump gate refused it
+};
 
 /// What the Localizer holds between calls (see Localizer).
 struct LocalizerState {
@@ -66,10 +106,16 @@ struct LocalizerState {
   std::vector<OdometryScan> scans;    ///< laser: scans within the drive window, oldest first
   /// The poses believed (world frame) at `set_odometry`; empty: localize globally next.
   HypothesisSet set;
-  Pose2 set_odometry;                ///< the odometry pose the set's poses refer to
-  double travelled_m = 0.0;          ///< odometry path length since set_odometry
-  int misses = 0;                    ///< observations in a row that were `not localized`
-  double since_global_m = 0.0;       ///< odometry path length since the last global search
+  Pose2 set_odometry;                  ///< the odometry pose the set's poses refer to
+  double travelled_m = 0.0;            ///< odometry path length since set_odometry
+  double turned_rad = 0.0;             ///< odometry turning since set_odometry
+  int misses = 0;                      ///< observations in a row that were `not localized`
+  double since_global_m = 0.0;         ///< odometry path length since the last global search
+  double since_weights_m = 0.0;        ///< path length since the weights last took evidence
+  double since_weights_rad = 0.0;      ///< turning since then
+  std::optional<SlicedSearch> search;  ///< a re-search under way
+  JumpGate gate;
+  LocalizerStatus status;
   std::optional<Estimate> estimate;  ///< the latest observation's estimate
 };
 
@@ -113,9 +159,11 @@ class Localizer {
   /// are no return. Throws gridloc::Error for a scan that fails validate(), or on a sonar
   /// Localizer (and a firing on a laser one).
   void add_observation(double time_s, const RangeScan& scan);
-  /// The latest firing's estimate (pose, covariance, verdict, hypotheses); gridloc::Error
-  /// before the first firing.
+  /// The latest firing's estimate (pose, covariance, verdict, hypotheses with their
+  /// weights); gridloc::Error before the first firing.
   Estimate estimate() const;
+  /// What the latest observation did: a re-search's progress, a rejected jump.
+  LocalizerStatus status() const;
 
   const CorrelationEstimator& estimator() const { return estimator_; }
 
@@ -123,23 +171,48 @@ class Localizer {
   /// Localizes `observation`, taken at odometry pose `taken_at`, into `next` (a copy of the
   /// state) and publishes it.
   void localize(LocalizerState next, const Pose2& taken_at, const Observation& observation);
-  /// A global search asking for the set's size plus one distinct poses; unless it is `not
-  /// localized`, its seeds (seed_hypotheses) join `candidates`: all of them, or with
-  /// `near_only` those within max_half_xy_m of a candidate.
-  Estimate search_globally(const Observation& observation,
-                           std::vector<TrackedHypothesis>& candidates, bool near_only) const;
-  /// Each hypothesis of next.set re-scored in its window (not pruned); those whose window
-  /// leaves the map or grows past max_half_xy_m are left out.
+  /// Each tracked place carried by the odometry since the set and re-scored in its window.
   std::vector<TrackedHypothesis> follow(const LocalizerState& next, const Pose2& taken_at,
                                         const Observation& observation) const;
-  /// The window around `hypothesis` carried by `moved` (odometry since the set), grown by
-  /// the odometry's error over next.travelled_m; nullopt past max_half_xy_m or off the map.
-  std::optional<SearchWindow> window_around(const TrackedHypothesis& hypothesis, const Pose2& moved,
-                                            double travelled_m, const SearchWindow& global) const;
+  /// One place carried by `moved` (its covariance grown by `travelled_m` and the turn) and
+  /// re-scored in its window; nullopt when the carried pose leaves the map.
+  std::optional<TrackedHypothesis> follow_one(TrackedHypothesis hypothesis, const Pose2& moved,
+                                              double travelled_m,
+                                              const Observation& observation) const;
+  /// Starts a re-search when the track is lost (or ambiguous long enough), runs its next
+  /// slices (all of them at the first observation) and, once it is done, lets its places
+  /// join `tracked`. Returns the finished search's estimate.
+  std::optional<Estimate> advance_search(LocalizerState& next,
+                                         std::vector<TrackedHypothesis>& tracked,
+                                         const Pose2& taken_at,
+                                         const Observation& observation) const;
+  /// A finished search's places, carried from its observation to `taken_at` and re-scored
+  /// on `observation`, join `tracked` with their entry weights (unless they meet a place
+  /// already tracked).
+  void join(const Estimate& global, const SlicedSearch& search,
+            std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
+            const Observation& observation) const;
+  /// Whether the window `e` around a carried place explains the observation there, and
+  /// where it puts the place: updates the place and sets e.verdict to the place's own.
+  void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
+             const SearchWindow& global) const;
+  /// The window's estimate; a window wider than three coarse cells is searched on the
+  /// coarse copy first, then within two coarse cells of its best on the tracker's grids.
+  Estimate search_window(const Observation& observation, const SearchWindow& window) const;
+  /// The best pose within two cells and two heading steps of `pose`.
+  Estimate best_near(const Pose2& pose, const Observation& observation,
+                     const SearchWindow& global) const;
+  /// The window around a carried place, its half sides from its covariance.
+  SearchWindow window_around(const TrackedHypothesis& hypothesis, const SearchWindow& global) const;
+
+  /// The estimator a search of the whole map runs on: the coarse copy when there is one.
+  const CorrelationEstimator& search_estimator(bool first) const;
 
   LocalizerOptions options_;
   std::optional<LaserSensor> laser_;  ///< set for a laser Localizer
   CorrelationEstimator estimator_;
+  /// A laser's coarse copy of the map for searches (SlicedSearchOptions::resolution).
+  std::optional<CorrelationEstimator> coarse_;
   mutable std::shared_mutex mutex_;
   LocalizerState state_;
 };

@@ -1,0 +1,70 @@
+#pragma once
+/// A global search cut into heading slices (issue 34: no stall). A tracker that lost its
+/// place re-searches the whole map without stopping its updates: each update runs the next
+/// few slices (every translation of the map, a slice of the headings, an exact search each),
+/// and when the last is done the slices' distinct peaks, merged, are the search's answer,
+/// taken at the odometry pose of the observation it searched.
+#include <vector>
+
+#include "gridloc/engine/correlation/estimator.hpp"
+
+namespace gridloc {
+
+struct SlicedSearchOptions {
+  /// A re-search is cut into heading slices of at most about this many lattice poses
+  /// (translations x headings) each; 0: the whole search in one update (a stall). A small
+  /// map's search (a sonar ring's room) is one slice, so it answers at once.
+  double poses_per_slice = 3e6;
+  int slices_per_update = 1;  ///< slices run per update while a re-search is under way
+  /// The distinct peaks each slice reports (each beyond the first costs a search).
+  int peaks_per_slice = 2;
+  /// A laser's searches run on a coarser copy of the map with cells of this size (m), built
+  /// once beside the tracker's; their places are then refined at the tracker's own cell by a
+  /// window each. 0 (or the tracker's cell or finer): the tracker's own grids, exact.
+  double resolution = 0.2;
+  /// The first observation's search too (else only re-searches) runs on the coarse copy.
+  bool coarse_first_search = true;
+};
+
+/// Checks the options; throws gridloc::Error naming the field.
+void validate(const SlicedSearchOptions& options);
+
+/// The slices a search of `lattice` is cut into under `options` (>= 1, at most one per
+/// heading).
+int slice_count(const Lattice& lattice, const SlicedSearchOptions& options);
+
+/// One re-search: the observation it searches, the odometry pose it was taken at, and the
+/// slices done so far. A plain value (copied with the tracker's state).
+class SlicedSearch {
+ public:
+  /// `global` is the estimator's global window for `observation`; `slices` >= 1.
+  SlicedSearch(Observation observation, const Pose2& odometry, const SearchWindow& global,
+               int slices, int peaks_per_slice);
+
+  /// Runs the next `count` slices (fewer when fewer are left).
+  void run(const CorrelationEstimator& estimator, int count);
+  bool done() const { return next_ == slices_; }
+  int slices_done() const { return next_; }
+  int slices() const { return slices_; }
+  const Observation& observation() const { return observation_; }
+  const Pose2& odometry() const { return odometry_; }
+
+  /// The merged answer once done(): the best slice's estimate, its alternatives the distinct
+  /// peaks of every slice, best first (poses within `distinct_xy` and `distinct_theta` of a
+  /// better one left out), `ambiguous` when the second scores ambiguity_ratio of the first.
+  Estimate result(const CorrelationOptions& options) const;
+
+  /// Slice k's window: the whole map, headings [-pi + k w, -pi + (k + 1) w), w = 2 pi / slices.
+  SearchWindow slice_window(int k) const;
+
+ private:
+  Observation observation_;
+  Pose2 odometry_;
+  SearchWindow global_;
+  int slices_ = 1;
+  int peaks_per_slice_ = 1;
+  int next_ = 0;
+  std::vector<Estimate> found_;  ///< one per slice run
+};
+
+}  // namespace gridloc

@@ -1,0 +1,54 @@
+// Tests of engine/src/localizer/jump_gate.cpp: answers that follow the odometry pass, a jump
+// is refused, and a new place is accepted once it has held over the settling drive.
+#include "gridloc/engine/localizer/jump_gate.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+GatedPose at(double x, double y, double odometry_x) {
+  GatedPose answer;
+  answer.pose = {x, y, 0.0};
+  answer.covariance = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
+  answer.odometry = {odometry_x, 0.0, 0.0};
+  return answer;
+}
+
+TEST(JumpGate, AnswersThatFollowTheOdometryPass) {
+  JumpGate gate;
+  EXPECT_TRUE(gate.admit(at(1.0, 1.0, 0.0)));  // the first answer is the reference
+  EXPECT_TRUE(gate.admit(at(1.5, 1.0, 0.5)));
+  EXPECT_TRUE(gate.admit(at(2.05, 1.02, 1.0)));  // within the odometry's error
+}
+
+TEST(JumpGate, AJumpIsRefusedUntilTheNewPlaceHasHeld) {
+  JumpGateOptions options;
+  options.settle_m = 1.0;
+  options.settle_updates = 3;
+  JumpGate gate(options);
+  EXPECT_TRUE(gate.admit(at(1.0, 1.0, 0.0)));
+  EXPECT_FALSE(gate.admit(at(9.0, 1.0, 0.5)));  // 7.5 m off what the odometry says
+  EXPECT_FALSE(gate.admit(at(9.5, 1.0, 1.0)));  // the new place holds: 0.5 m, 2 answers
+  EXPECT_TRUE(gate.admit(at(10.0, 1.0, 1.5)));  // 1 m, 3 answers: accepted
+  EXPECT_TRUE(gate.admit(at(10.5, 1.0, 2.0)));  // and now the reference
+  EXPECT_FALSE(gate.admit(at(1.0, 1.0, 2.5)));  // going back is a jump again
+}
+
+TEST(JumpGate, AHeadingJumpIsRefused) {
+  JumpGate gate;
+  EXPECT_TRUE(gate.admit(at(1.0, 1.0, 0.0)));
+  GatedPose turned = at(1.0, 1.0, 0.0);
+  turned.pose.theta = 0.3;  // 17 deg with no turn in the odometry
+  EXPECT_FALSE(gate.admit(turned));
+  gate.reset();
+  EXPECT_TRUE(gate.admit(turned));
+  JumpGateOptions bad;
+  bad.settle_updates = 0;
+  test::expect_error([&] { JumpGate broken(bad); }, {"settle_updates"});
+}
+
+}  // namespace
+}  // namespace gridloc
