@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -14,15 +15,18 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/gfs_odometry.hpp"
 #include "gridloc/sensors/log_split.hpp"
+#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "track_render.hpp"
 
 namespace gridloc::cli {
 namespace {
 
 struct TrackArgs {
   std::string map, log, prior, odometry = "laser", odometry_noise, raw_odometry;
-  std::string odometry_error = "0.02,1";
+  std::string odometry_error = "0.05,5";
+  std::string plot;  ///< --plot FILE.png
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
@@ -130,7 +134,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
-  const OdometryNoise model = parse_odometry_noise(args.odometry_error);
+  const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
   options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
       model.frac;
   options.localizer.odometry_turn_error_per_m =
@@ -263,6 +267,32 @@ void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap&
   }
 }
 
+/// Refuses a --plot path whose folder is missing before the run, not after it.
+void check_plot_path(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent)) {
+    throw Error("--plot " + path + ": the folder " + parent.string() + " does not exist");
+  }
+}
+
+/// --plot: the track over the map, the weights over the updates.
+void write_plot(const TrackArgs& args, const CarmenLog& log, const OccupancyMap& map,
+                std::vector<TrackStep> steps, const TrackTally& tally) {
+  TrackPicture picture;
+  picture.map = map;
+  for (const TrackStep& step : steps) {
+    if (args.truth) picture.truth.push_back(log.lasers[step.index].robot_pose);
+  }
+  picture.steps = std::move(steps);
+  picture.title = "gridloc track: " + std::filesystem::path(args.log).filename().string();
+  std::ostringstream caption;
+  caption << tally.steps << " scans: " << tally.localized << " localized, " << tally.ambiguous
+          << " ambiguous, " << tally.not_localized << " not localized; " << tally.searches
+          << " searches finished, " << tally.rejected_jumps << " jumps rejected";
+  picture.caption = caption.str();
+  plot::write_png(args.plot, render_track(picture));
+}
+
 void run(const TrackArgs& args) {
   const OccupancyMap map = load_map(args.map);
   CarmenOptions carmen;
@@ -270,9 +300,12 @@ void run(const TrackArgs& args) {
   const CarmenLog log = load_carmen_log(args.log, carmen);
   const LogTrackingOptions options = tracking_options(args, log, map);
   if (args.trial_count > 0) return run_trials(args, log, map, options);
+  if (!args.plot.empty()) check_plot_path(args.plot);
   TrackTally tally;
+  std::vector<TrackStep> steps;
   track_log(log, map, options, [&](const TrackStep& step) {
     tally.add(step, args.truth);
+    if (!args.plot.empty()) steps.push_back(step);
     if (args.json) {
       std::cout << step_json(step, args.truth).dump() << "\n" << std::flush;
       return;
@@ -280,6 +313,7 @@ void run(const TrackArgs& args) {
     std::fprintf(stderr, "\rscan %zu/%zu: %s, %.1f m driven   ", step.index + 1, log.lasers.size(),
                  to_string(step.estimate.verdict).c_str(), step.travelled_m);
   });
+  if (!args.plot.empty()) write_plot(args, log, map, std::move(steps), tally);
   if (!args.json) print_summary(tally, args.truth);
 }
 
@@ -369,6 +403,9 @@ void add_track(CLI::App& app) {
   cmd->add_flag("--truth-from-log", args->truth,
                 "the log's poses are the truth (SLAM-corrected logs): add error_m, error_deg");
   cmd->add_flag("--json", args->json, "one JSON object per processed scan (JSON Lines)");
+  cmd->add_option("--plot", args->plot,
+                  "a PNG of the track over the map (by verdict, the truth with "
+                  "--truth-from-log, searches, rejected jumps) and the places' weights");
   cmd->callback([args] { run(*args); });
 }
 

@@ -1,5 +1,7 @@
 #include "heatmap_plot.hpp"
 
+#include "heatmap_layout.hpp"
+
 #include "gridloc/grids/error.hpp"
 
 #include <algorithm>
@@ -334,6 +336,26 @@ cv::Mat viridis() {
   cv::Mat lut;
   cv::applyColorMap(ramp, lut, cv::COLORMAP_VIRIDIS);
   return lut;
+}
+
+void paint_grid(cv::Mat& img, const OccupancyMap& map, const View& view) {
+  if (map.cells.empty()) return;
+  const GridGeometry& g = map.geometry;
+  const double c = std::cos(g.yaw), s = std::sin(g.yaw);
+  for (int row = 0; row < img.rows; ++row) {
+    auto* pixel = img.ptr<cv::Vec3b>(row);
+    for (int col = 0; col < img.cols; ++col) {
+      const cv::Point2d w = view.at(col, row);
+      const double dx = w.x - g.origin.x(), dy = w.y - g.origin.y();
+      const Cell cell = g.cell_of(c * dx + s * dy, -s * dx + c * dy);
+      const CellState state =
+          g.contains(cell.ix, cell.iy) ? map.at(cell.ix, cell.iy) : CellState::Unknown;
+      const double level = state == CellState::Free       ? 255.0
+                           : state == CellState::Occupied ? layout::kOccupiedGrey
+                                                          : layout::kUnknownGrey;
+      pixel[col] = cv::Vec3b::all(static_cast<unsigned char>(level));
+    }
+  }
 }
 
 }  // namespace gridloc::cli::plot

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/grids/grid.hpp"
+
 namespace gridloc::cli::plot {
 
 // Colours are BGR.
@@ -123,6 +125,10 @@ void axes_m(cv::Mat& img, const View& v, double ox, double oy, const std::string
 void colour_bar(cv::Mat& img, const cv::Mat& lut, int x, int top, int bottom, double lo, double hi,
                 const std::string& title);
 
+/// The occupancy map under the plot area (`img` is the area, `view` its view with origin
+/// 0): each pixel its cell's state, occupied dark grey, unknown (and beyond the grid) light
+/// grey, free white.
+void paint_grid(cv::Mat& img, const OccupancyMap& map, const View& view);
 /// A scale bar of a round length in the lower-left corner of the plot area, on a white box.
 void scale_bar(cv::Mat& img, const View& v);
 

@@ -45,7 +45,7 @@ SonarSimOptions parse_noise(const std::string& text) {
   throw Error("--noise must be realistic or none, not '" + text + "'");
 }
 
-OdometryNoise parse_odometry_noise(const std::string& text) {
+OdometryNoise parse_odometry_noise(const std::string& text, const std::string& option) {
   OdometryNoise noise;
   std::vector<double> fields;
   try {
@@ -62,10 +62,10 @@ OdometryNoise parse_odometry_noise(const std::string& text) {
     }
     if (fields.size() < 2 || fields.size() > 3) throw std::invalid_argument(text);
   } catch (const std::exception&) {
-    throw Error(
-        "--odometry-noise must be FRAC,DEG_PER_M or FRAC,DEG_PER_M,SLIP_EVERY_M (e.g. "
-        "0.02,1 or 0.05,5,50), not '" +
-        text + "'");
+    throw Error(option +
+                " must be FRAC,DEG_PER_M or FRAC,DEG_PER_M,SLIP_EVERY_M (e.g. 0.02,1 or "
+                "0.05,5,50), not '" +
+                text + "'");
   }
   noise.frac = fields[0];
   noise.rad_per_m = deg2rad(fields[1]);

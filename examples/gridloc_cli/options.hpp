@@ -18,7 +18,8 @@ GlobalModel parse_global(const std::string& text);
 /// The evaluations' --noise: "realistic" (SonarSimOptions::realistic) or "none".
 SonarSimOptions parse_noise(const std::string& text);
 /// FRAC,DEG_PER_M of --odometry-noise (length share, heading drift in degrees per metre).
-OdometryNoise parse_odometry_noise(const std::string& text);
+OdometryNoise parse_odometry_noise(const std::string& text,
+                                   const std::string& option = "--odometry-noise");
 SearchStrategy parse_strategy(const std::string& text);
 ArcRule parse_arc_rule(const std::string& text);
 ScanModel parse_scan_model(const std::string& text);

@@ -224,28 +224,6 @@ void paint_polygons(cv::Mat& img, const PolygonMap& map, const View& view) {
   plot::outline_rings(img, rings, plot::kInk, 2);
 }
 
-/// The occupancy map, each pixel its cell's state: occupied dark grey, unknown (and beyond the
-/// grid) light grey, free white.
-void paint_grid(cv::Mat& img, const OccupancyMap& map, const View& view) {
-  if (map.cells.empty()) return;
-  const GridGeometry& g = map.geometry;
-  const double c = std::cos(g.yaw), s = std::sin(g.yaw);
-  for (int row = 0; row < img.rows; ++row) {
-    auto* pixel = img.ptr<cv::Vec3b>(row);
-    for (int col = 0; col < img.cols; ++col) {
-      const cv::Point2d w = view.at(col, row);
-      const double dx = w.x - g.origin.x(), dy = w.y - g.origin.y();
-      const Cell cell = g.cell_of(c * dx + s * dy, -s * dx + c * dy);
-      const CellState state =
-          g.contains(cell.ix, cell.iy) ? map.at(cell.ix, cell.iy) : CellState::Unknown;
-      const double level = state == CellState::Free       ? 255.0
-                           : state == CellState::Occupied ? layout::kOccupiedGrey
-                                                          : layout::kUnknownGrey;
-      pixel[col] = cv::Vec3b::all(static_cast<unsigned char>(level));
-    }
-  }
-}
-
 void corner_dot(cv::Mat& img, const cv::Point2d& p) {
   plot::circle(img, p, 2.0, kCorner, cv::FILLED);
 }
@@ -459,7 +437,7 @@ void paint_plot(cv::Mat& img, const TeamPicture& picture, const View& view) {
   if (picture.polygons) {
     paint_polygons(area, *picture.polygons, local);
   } else {
-    paint_grid(area, picture.grid, local);
+    plot::paint_grid(area, picture.grid, local);
   }
   for (const MapCorner& c : picture.features.corners) {
     if (c.point.allFinite()) corner_dot(area, local.px(c.point.x(), c.point.y()));

@@ -3,6 +3,8 @@
 // from ODOM lines, and bad input as one error line with exit status 2.
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -156,6 +158,26 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, "track --map " + quote(map) + " --global --log " +
                                     quote(dir.file("missing.log"))),
                    {"missing.log"});
+  expect_cli_error(run_cli(dir, base + "--global --plot " + quote(dir.file("no/such/t.png"))),
+                   {"--plot", "does not exist"});
+  expect_cli_error(run_cli(dir, base + "--global --raw-odometry " + quote(dir.file("x.gfs"))),
+                   {"x.gfs"});
+  expect_cli_error(run_cli(dir, base + "--global --odometry-error 0.05"), {"--odometry-error"});
+  expect_cli_error(run_cli(dir, base + "--global --entry-weight 0"), {"entry_weight"});
+}
+
+TEST_F(TrackCli, APlotShowsTheTrackAndTheWeights) {
+  const std::string png = dir.file("track.png");
+  const test::CliRun run = run_cli(dir, "track --map " + quote(map) + " --log " + quote(log) +
+                                            " --max-range 3 --truth-from-log --prior 8.55,2.45,0.02"
+                                            " --plot " +
+                                            quote(png));
+  ASSERT_EQ(run.status, 0) << run.err;
+  const cv::Mat img = cv::imread(png);
+  ASSERT_FALSE(img.empty());
+  EXPECT_GT(img.cols, 700);
+  EXPECT_GT(img.rows, 400);
+  EXPECT_NE(run.out.find("update: median"), std::string::npos) << run.out;
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ struct LocalizerOptions {
   /// A window whose normalized score falls below this share of the place's usual one
   /// explains nothing there (a miss, the place not moved), whatever its own verdict: a
   /// window always finds something, even for a robot carried elsewhere.
-  double miss_fit_ratio = 0.7;
+  double miss_fit_ratio = 0.5;
   /// The odometry's place (the best within two cells of where it carried the place) is kept
   /// when it scores within this share of the window's winner: the scan does not move a
   /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
