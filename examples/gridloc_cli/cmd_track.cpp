@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -46,11 +47,12 @@ struct TrackArgs {
 /// What the summary counts over the processed scans.
 struct TrackTally {
   int steps = 0, localized = 0, ambiguous = 0, not_localized = 0, wrong_localized = 0;
-  int rejected_jumps = 0, searches = 0;
-  double error_sum_m = 0.0, error_sum_deg = 0.0, time_ms = 0.0;
+  int rejected_jumps = 0, searches = 0, jumps = 0;
+  double error_sum_m = 0.0, error_sum_deg = 0.0, time_ms = 0.0, worst_jump_m = 0.0;
   std::vector<double> times_ms;
-  std::vector<int> losses;  ///< lengths (updates) of the runs of answers not `localized`
-  int current_loss = 0;
+  std::vector<double> losses_m;  ///< path driven in each run of answers not `localized`
+  std::optional<TrackStep> last_localized;
+  std::optional<double> loss_from_m;  ///< where the current loss began (path driven)
 
   void add(const TrackStep& step, bool truth) {
     ++steps;
@@ -58,20 +60,34 @@ struct TrackTally {
     times_ms.push_back(step.timing_ms);
     rejected_jumps += step.status.jump_rejected;
     searches += step.status.search_finished;
-    if (step.estimate.verdict == Verdict::Localized) {
-      if (current_loss > 0) losses.push_back(current_loss);
-      current_loss = 0;
-    } else {
-      ++current_loss;
-    }
     const Verdict verdict = step.estimate.verdict;
     localized += verdict == Verdict::Localized;
     ambiguous += verdict == Verdict::Ambiguous;
     not_localized += verdict == Verdict::NotLocalized;
-    if (!truth || verdict != Verdict::Localized) return;
+    if (verdict != Verdict::Localized) {
+      if (!loss_from_m) loss_from_m = step.travelled_m;
+      return;
+    }
+    if (loss_from_m) losses_m.push_back(step.travelled_m - *loss_from_m);
+    loss_from_m.reset();
+    count_jump(step);
+    last_localized = step;
+    if (!truth) return;
     error_sum_m += step.error_m;
     error_sum_deg += step.error_deg;
     wrong_localized += step.error_m > 0.1 || step.error_deg > 2.0;  // issue 13's laser success
+  }
+  /// A jump (issue 34): consecutive `localized` answers more than 1 m apart beyond what the
+  /// odometry moved between them, within 2 m of driving (farther, the odometry's own error
+  /// may reach a metre).
+  void count_jump(const TrackStep& step) {
+    if (!last_localized || step.travelled_m - last_localized->travelled_m > 2.0) return;
+    const Pose2 moved = relative_pose(last_localized->odometry, step.odometry);
+    const Pose2 expected = compose(last_localized->estimate.pose, moved);
+    const double off =
+        std::hypot(step.estimate.pose.x - expected.x, step.estimate.pose.y - expected.y);
+    jumps += off > 1.0;
+    if (off > 1.0) worst_jump_m = std::max(worst_jump_m, off);
   }
 };
 
@@ -95,6 +111,7 @@ nlohmann::json step_json(const TrackStep& step, bool truth) {
                          {"alternatives", estimate["alternatives"]},
                          {"covariance", estimate["covariance"]},
                          {"travelled_m", step.travelled_m},
+                         {"odometry", cli::to_json(step.odometry)},
                          {"timing_ms", step.timing_ms}};
   if (truth) {
     line["error_m"] = step.error_m;
@@ -176,20 +193,20 @@ double quantile(std::vector<T> values, double q) {
   return static_cast<double>(values[std::clamp<std::size_t>(rank, 1, values.size()) - 1]);
 }
 
-void print_summary(TrackTally tally, bool truth) {
+void print_summary(const TrackTally& tally, bool truth) {
   std::fprintf(stderr, "\n");
-  if (tally.current_loss > 0) tally.losses.push_back(tally.current_loss);
   std::printf(
       "%d scans: %d localized, %d ambiguous, %d not localized; %.1f ms per update (%.1f/s)\n",
       tally.steps, tally.localized, tally.ambiguous, tally.not_localized,
       tally.time_ms / std::max(1, tally.steps),
       tally.time_ms > 0.0 ? 1000.0 * tally.steps / tally.time_ms : 0.0);
   std::printf(
-      "update: median %.1f ms, p99 %.1f ms, max %.1f ms; %d searches finished, %d jumps "
-      "rejected; %zu losses, median %.0f and longest %.0f updates\n",
+      "update: median %.1f ms, p99 %.1f ms, max %.1f ms; %d searches finished; %d jumps "
+      "over 1 m within 2 m of driving (worst %.1f m), %d rejected; %zu losses, the longest over "
+      "%.1f m\n",
       quantile(tally.times_ms, 0.5), quantile(tally.times_ms, 0.99), quantile(tally.times_ms, 1.0),
-      tally.searches, tally.rejected_jumps, tally.losses.size(), quantile(tally.losses, 0.5),
-      quantile(tally.losses, 1.0));
+      tally.searches, tally.jumps, tally.worst_jump_m, tally.rejected_jumps,
+      tally.losses_m.size() + (tally.loss_from_m ? 1 : 0), quantile(tally.losses_m, 1.0));
   if (truth && tally.localized > 0) {
     std::printf("localized: mean error %.3f m, %.2f deg; %d beyond 10 cm or 2 deg\n",
                 tally.error_sum_m / tally.localized, tally.error_sum_deg / tally.localized,

@@ -157,6 +157,7 @@ void track_log(const CarmenLog& log, Localizer& localizer, const LogTrackingOpti
     if (k % static_cast<std::size_t>(options.every) != 0) continue;
     TrackStep step = observe(localizer, log.lasers[scans[k]], scans[k]);
     step.travelled_m = travelled_m;
+    step.odometry = odometry[k];
     on_step(step);
     if (options.max_travel_m > 0.0 && travelled_m >= options.max_travel_m) return;
   }

@@ -45,6 +45,10 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           "must be finite and >= 0");
   require(options.odometry_score_slack >= 0.0 && options.odometry_score_slack < 1.0,
           "odometry_score_slack", options.odometry_score_slack, "must lie in [0, 1)");
+  require(finite_at_least(options.step_min_m, 0.0), "step_min_m", options.step_min_m,
+          "must be finite and >= 0");
+  require(finite_at_least(options.step_min_rad, 0.0), "step_min_rad", options.step_min_rad,
+          "must be finite and >= 0");
   require(finite_at_least(options.localized_sigma_m, 0.0), "localized_sigma_m",
           options.localized_sigma_m, "must be finite and >= 0");
   require(finite_at_least(options.localized_sigma_rad, 0.0), "localized_sigma_rad",
@@ -341,7 +345,8 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
                                                        const Observation& observation) const {
   hypothesis.pose = compose(hypothesis.pose, moved);
   if (!on_map(estimator_.map(), hypothesis.pose)) return std::nullopt;
-  const double xy = options_.odometry_error_per_m * travelled_m;
+  const double xy = options_.odometry_error_per_m * travelled_m +
+                    0.5 * options_.odometry_turn_error_per_m * travelled_m * travelled_m;
   const double theta = options_.odometry_turn_error_per_m * travelled_m +
                        options_.odometry_turn_error_per_rad * std::abs(moved.theta);
   const double cap = options_.max_half_xy_m * options_.max_half_xy_m;  // a lost place's bound
@@ -391,6 +396,9 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
           2.0 * estimator_.options().resolution &&
       std::abs(normalize_angle(near.pose.theta - e.pose.theta)) <= 2.0 * global.step_theta;
   if (e.verdict == Verdict::Localized && (same || !odometry_holds)) {
+    // A step the odometry did not make is not trusted yet (the place follows it: a slip
+    // holds at the next observation, a wrong match does not).
+    if (hypothesis.confirmed && surprising(hypothesis, e.pose)) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
     hypothesis.confirmed = true;
@@ -410,22 +418,35 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   e.verdict = tight && hypothesis.confirmed ? Verdict::Localized : Verdict::NotLocalized;
 }
 
+bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& placed) const {
+  const Eigen::Matrix3d& c = predicted.covariance;
+  const double sigma_xy = std::sqrt(std::max(c(0, 0), c(1, 1)));
+  const double allowed_xy = std::max(options_.step_min_m, options_.prior_sigmas * sigma_xy);
+  const double allowed_theta =
+      std::max(options_.step_min_rad, options_.prior_sigmas * std::sqrt(c(2, 2)));
+  return std::hypot(placed.x - predicted.pose.x, placed.y - predicted.pose.y) > allowed_xy ||
+         std::abs(normalize_angle(placed.theta - predicted.pose.theta)) > allowed_theta;
+}
+
 Estimate Localizer::search_window(const Observation& observation,
                                   const SearchWindow& window) const {
   const double cell = coarse_ ? coarse_->options().resolution : 0.0;
   if (!coarse_ || window.half_xy <= 3.0 * cell) return estimator_.estimate(observation, window);
   // A wide window: its best place on the coarse copy, then within two coarse cells of it on
-  // the tracker's grids.
+  // the tracker's grids; and within two coarse cells of the centre (the coarse copy may
+  // blur a near place away). The better of the two.
   SearchWindow wide = window;
   wide.step_xy = cell;
   wide.step_theta = std::max(window.step_theta, coarse_->global_window(observation).step_theta);
   const Estimate rough = coarse_->estimate(observation, wide, 1);
   SearchWindow near = window;
-  near.center = rough.pose;
   near.half_xy = 2.0 * cell;
   near.half_theta =
       std::min(window.half_theta, std::max(2.0 * wide.step_theta, options_.min_half_theta));
-  return estimator_.estimate(observation, near);
+  Estimate at_centre = estimator_.estimate(observation, near);
+  near.center = rough.pose;
+  Estimate at_rough = estimator_.estimate(observation, near);
+  return at_rough.score > at_centre.score ? at_rough : at_centre;
 }
 
 Estimate Localizer::best_near(const Pose2& pose, const Observation& observation,

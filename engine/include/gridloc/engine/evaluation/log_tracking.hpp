@@ -52,6 +52,7 @@ struct TrackStep {
   double time = 0.0;      ///< the scan's timestamp (s)
   Estimate estimate;
   double travelled_m = 0.0;  ///< odometry path length since the first scan run through
+  Pose2 odometry;            ///< the odometry pose the Localizer was given at this scan
   double timing_ms = 0.0;    ///< add_observation's wall time
   LocalizerStatus status;    ///< a re-search's progress, a rejected jump
   /// Against the log's pose (the corrected one in SLAM-corrected logs): position error (m)

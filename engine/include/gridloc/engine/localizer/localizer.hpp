@@ -53,6 +53,12 @@ struct LocalizerOptions {
   /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
   /// distance from its prior for the same reason.
   double odometry_score_slack = 0.02;
+  /// A window that moves a tracked place farther from where the odometry carried it than
+  /// prior_sigmas of its grown covariance, and at least these, is not `localized` at that
+  /// observation (a scan matched to the wrong place, or a slip: the place follows it, and the
+  /// next observation tells which).
+  double step_min_m = 0.1;
+  double step_min_rad = 0.0349065850399;  ///< 2 deg
   /// A place the scan does not pin is carried by the odometry, and stays `localized` while
   /// its grown covariance is within these (1 sigma).
   double localized_sigma_m = 0.1;
@@ -196,6 +202,8 @@ class Localizer {
   /// where it puts the place: updates the place and sets e.verdict to the place's own.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
              const SearchWindow& global) const;
+  /// Whether `placed` lies farther from the carried place than its covariance allows.
+  bool surprising(const TrackedHypothesis& predicted, const Pose2& placed) const;
   /// The window's estimate; a window wider than three coarse cells is searched on the
   /// coarse copy first, then within two coarse cells of its best on the tracker's grids.
   Estimate search_window(const Observation& observation, const SearchWindow& window) const;

@@ -14,7 +14,7 @@ struct SlicedSearchOptions {
   /// A re-search is cut into heading slices of at most about this many lattice poses
   /// (translations x headings) each; 0: the whole search in one update (a stall). A small
   /// map's search (a sonar ring's room) is one slice, so it answers at once.
-  double poses_per_slice = 3e6;
+  double poses_per_slice = 1.2e6;
   int slices_per_update = 1;  ///< slices run per update while a re-search is under way
   /// The distinct peaks each slice reports (each beyond the first costs a search).
   int peaks_per_slice = 2;
