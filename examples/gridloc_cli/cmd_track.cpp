@@ -31,6 +31,7 @@ struct TrackArgs {
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
+  double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
   int every = 1;
   std::size_t start = 0, count = 0;
@@ -151,6 +152,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
+  options.localizer.research.resolution = args.search_resolution;
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
   options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
       model.frac;
@@ -356,6 +358,10 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
       ->capture_default_str();
   cmd->add_option("--evidence-per-scan", args.evidence_per_scan,
                   "log-likelihood per unit of a window's normalized score")
+      ->capture_default_str();
+  cmd->add_option("--search-resolution", args.search_resolution,
+                  "cell (m) of the coarse copy of the map the whole-map searches run on, their "
+                  "places then refined at the map's cell (0: the map's cell, exact)")
       ->capture_default_str();
   cmd->add_option("--poses-per-slice", args.poses_per_slice,
                   "a re-search runs one heading slice of about this many lattice poses per "

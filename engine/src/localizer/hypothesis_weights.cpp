@@ -50,6 +50,8 @@ void validate(const HypothesisWeightOptions& options) {
           options.localized_weight, "must lie in (0.5, 1]");
   require(options.min_weight >= 0.0 && options.min_weight < 0.5, "min_weight", options.min_weight,
           "must lie in [0, 0.5)");
+  require(std::isfinite(options.newcomer_settle_m) && options.newcomer_settle_m >= 0.0,
+          "newcomer_settle_m", options.newcomer_settle_m, "must be finite and >= 0");
   require(std::isfinite(options.update_min_m) && options.update_min_m >= 0.0, "update_min_m",
           options.update_min_m, "must be finite and >= 0");
   require(std::isfinite(options.update_min_rad) && options.update_min_rad >= 0.0, "update_min_rad",
@@ -125,7 +127,9 @@ Estimate weighted_estimate(const std::vector<TrackedHypothesis>& hypotheses,
   e.alternatives.clear();
   for (const TrackedHypothesis& h : hypotheses)
     e.alternatives.push_back({h.pose, h.score, h.weight});
-  if (e.verdict != Verdict::NotLocalized && best.weight < options.localized_weight) {
+  if (best.newcomer && best.driven_m < options.newcomer_settle_m) {
+    e.verdict = Verdict::NotLocalized;
+  } else if (e.verdict != Verdict::NotLocalized && best.weight < options.localized_weight) {
     e.ambiguous = true;
     e.verdict = Verdict::Ambiguous;
   }

@@ -297,7 +297,7 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
     global.covariance = Eigen::Vector3d(cell * cell, cell * cell, 4.0 * step * step).asDiagonal();
   }
   if (coarse || global.verdict != Verdict::NotLocalized) {
-    join(global, *next.search, tracked, taken_at, observation);
+    join(global, *next.search, tracked, taken_at, observation, !first);
   }
   next.search.reset();
   next.status.search_finished = true;
@@ -307,9 +307,13 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
 
 void Localizer::join(const Estimate& global, const SlicedSearch& search,
                      std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
-                     const Observation& observation) const {
+                     const Observation& observation, bool newcomers) const {
   const Pose2 moved = relative_pose(search.odometry(), taken_at);
   const std::vector<TrackedHypothesis> before = tracked;  // the entry weights refer to these
+  // After a confirmed track was lost, its successor must first be carried a while; a prior
+  // no window confirmed was never a track.
+  const bool lost_a_track = std::any_of(before.begin(), before.end(),
+                                        [](const TrackedHypothesis& h) { return h.confirmed; });
   const auto meets = [&](const TrackedHypothesis& seed) {
     return std::any_of(before.begin(), before.end(), [&](const TrackedHypothesis& h) {
       return std::hypot(seed.pose.x - h.pose.x, seed.pose.y - h.pose.y) <=
@@ -324,6 +328,8 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
     if (!followed || meets(*followed)) continue;
     followed->log_weight =
         entry_log_weight(before, followed->estimate.normalized_score, options_.weights);
+    followed->newcomer = newcomers && lost_a_track;
+    followed->driven_m = 0.0;
     tracked.push_back(std::move(*followed));
   }
 }
@@ -344,6 +350,7 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
                                                        const Pose2& moved, double travelled_m,
                                                        const Observation& observation) const {
   hypothesis.pose = compose(hypothesis.pose, moved);
+  hypothesis.driven_m += travelled_m;
   if (!on_map(estimator_.map(), hypothesis.pose)) return std::nullopt;
   const double xy = options_.odometry_error_per_m * travelled_m +
                     0.5 * options_.odometry_turn_error_per_m * travelled_m * travelled_m;

@@ -44,6 +44,10 @@ struct TrackedHypothesis {
   /// The windows' usual normalized score here (a running mean over the observations that
   /// placed it): an observation scoring far below it is a miss, whatever its verdict.
   double usual_fit = 0.0;
+  /// A re-search proposed it (not the first observation's search): it cannot be `localized`
+  /// before it has been carried over HypothesisWeightOptions::newcomer_settle_m of driving.
+  bool newcomer = false;
+  double driven_m = 0.0;  ///< odometry path since it entered
 };
 
 struct HypothesisSet {

@@ -23,7 +23,10 @@ struct HypothesisWeightOptions {
   /// confirmed): the newcomer's past evidence is unknown, but it did not make the set.
   double unsure_entry_weight = 0.1;
   double localized_weight = 0.99;  ///< `localized` needs one place to hold this share
-  double min_weight = 1e-4;        ///< places whose share falls below this are dropped
+  /// A re-search's place is not `localized` before it has been carried this far (m): after a
+  /// loss the weights must have seen the place from more than one spot.
+  double newcomer_settle_m = 2.0;
+  double min_weight = 1e-4;  ///< places whose share falls below this are dropped
   /// The evidence is added only after the robot moved this far or turned this much since
   /// the last time (a standstill repeats the same view: no new information).
   double update_min_m = 0.05;
@@ -59,8 +62,9 @@ void merge_and_prune_weighted(std::vector<TrackedHypothesis>& hypotheses,
 
 /// The answer of a weighted set (heaviest first, not empty): the heaviest place's pose,
 /// covariance and window estimate, every place as an alternative with its score and weight;
-/// `not localized` when its window explained nothing, `ambiguous` while it holds less than
-/// localized_weight, else its window's own verdict.
+/// `not localized` when its window explained nothing or it is a re-search's place carried
+/// less than newcomer_settle_m, `ambiguous` while it holds less than localized_weight, else
+/// its window's own verdict.
 Estimate weighted_estimate(const std::vector<TrackedHypothesis>& hypotheses,
                            const HypothesisWeightOptions& options);
 

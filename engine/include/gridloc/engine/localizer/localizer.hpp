@@ -194,10 +194,10 @@ class Localizer {
                                          const Observation& observation) const;
   /// A finished search's places, carried from its observation to `taken_at` and re-scored
   /// on `observation`, join `tracked` with their entry weights (unless they meet a place
-  /// already tracked).
+  /// already tracked); a re-search's are `newcomers` (TrackedHypothesis::newcomer).
   void join(const Estimate& global, const SlicedSearch& search,
             std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
-            const Observation& observation) const;
+            const Observation& observation, bool newcomers) const;
   /// Whether the window `e` around a carried place explains the observation there, and
   /// where it puts the place: updates the place and sets e.verdict to the place's own.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
