@@ -45,6 +45,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           "must be finite and >= 0");
   require(options.odometry_score_slack >= 0.0 && options.odometry_score_slack < 1.0,
           "odometry_score_slack", options.odometry_score_slack, "must lie in [0, 1)");
+  require(options.split_ratio > 0.0 && options.split_ratio <= 1.0, "split_ratio",
+          options.split_ratio, "must lie in (0, 1]");
   require(finite_at_least(options.step_min_m, 0.0), "step_min_m", options.step_min_m,
           "must be finite and >= 0");
   require(finite_at_least(options.step_min_rad, 0.0), "step_min_rad", options.step_min_rad,
@@ -324,7 +326,7 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
   };
   for (TrackedHypothesis seed : seed_hypotheses(global, options_.hypothesis_set).hypotheses) {
     std::optional<TrackedHypothesis> followed =
-        follow_one(std::move(seed), moved, std::hypot(moved.x, moved.y), observation);
+        follow_one(std::move(seed), moved, std::hypot(moved.x, moved.y), observation, nullptr);
     if (!followed || meets(*followed)) continue;
     followed->log_weight =
         entry_log_weight(before, followed->estimate.normalized_score, options_.weights);
@@ -339,16 +341,34 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
   const Pose2 moved = relative_pose(next.set_odometry, taken_at);
   std::vector<TrackedHypothesis> followed;
   for (const TrackedHypothesis& hypothesis : next.set.hypotheses) {
+    std::vector<Pose2> look_alikes;
     std::optional<TrackedHypothesis> carried =
-        follow_one(hypothesis, moved, next.travelled_m, observation);
-    if (carried) followed.push_back(std::move(*carried));
+        follow_one(hypothesis, moved, next.travelled_m, observation, &look_alikes);
+    if (!carried) continue;
+    // A place carried so far that its window spans look-alikes splits into them: the weights,
+    // not this one scan, will say which it is.
+    for (const Pose2& pose : look_alikes) {
+      TrackedHypothesis split = *carried;
+      split.pose = pose;
+      const double cell = coarse_->options().resolution;
+      split.covariance = Eigen::Vector3d(cell * cell, cell * cell,
+                                         options_.min_half_theta * options_.min_half_theta / 9.0)
+                             .asDiagonal();
+      split.confirmed = false;
+      split.misses = 0;
+      std::optional<TrackedHypothesis> placed =
+          follow_one(split, Pose2{}, 0.0, observation, nullptr);
+      if (placed) followed.push_back(std::move(*placed));
+    }
+    followed.push_back(std::move(*carried));
   }
   return followed;
 }
 
 std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothesis,
                                                        const Pose2& moved, double travelled_m,
-                                                       const Observation& observation) const {
+                                                       const Observation& observation,
+                                                       std::vector<Pose2>* look_alikes) const {
   hypothesis.pose = compose(hypothesis.pose, moved);
   hypothesis.driven_m += travelled_m;
   if (!on_map(estimator_.map(), hypothesis.pose)) return std::nullopt;
@@ -364,7 +384,7 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
       std::min(covariance(2, 2) + theta * theta, std::numbers::pi * std::numbers::pi);
   const SearchWindow global = estimator_.global_window(observation);
   SearchWindow window = window_around(hypothesis, global);
-  Estimate e = search_window(observation, window);
+  Estimate e = search_window(observation, window, look_alikes);
   if (e.on_window_edge && hypothesis.confirmed) {  // the best may lie beyond (a slip): look
                                                    // once more, twice as wide
     window.half_xy =
@@ -435,25 +455,54 @@ bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& plac
          std::abs(normalize_angle(placed.theta - predicted.pose.theta)) > allowed_theta;
 }
 
-Estimate Localizer::search_window(const Observation& observation,
-                                  const SearchWindow& window) const {
+Estimate Localizer::search_window(const Observation& observation, const SearchWindow& window,
+                                  std::vector<Pose2>* look_alikes) const {
   const double cell = coarse_ ? coarse_->options().resolution : 0.0;
-  if (!coarse_ || window.half_xy <= 3.0 * cell) return estimator_.estimate(observation, window);
+  if (!coarse_ || window.half_xy <= 3.0 * cell || !coarse_contains(window.center)) {
+    return estimator_.estimate(observation, window);
+  }
   // A wide window: its best place on the coarse copy, then within two coarse cells of it on
   // the tracker's grids; and within two coarse cells of the centre (the coarse copy may
   // blur a near place away). The better of the two.
   SearchWindow wide = window;
   wide.step_xy = cell;
   wide.step_theta = std::max(window.step_theta, coarse_->global_window(observation).step_theta);
-  const Estimate rough = coarse_->estimate(observation, wide, 1);
+  const bool very_wide =
+      window.half_xy > options_.wide_window_m || window.half_theta > options_.wide_window_rad;
+  const int peaks = look_alikes && very_wide ? options_.hypothesis_set.max_hypotheses : 1;
+  const Estimate rough = coarse_->estimate(observation, wide, peaks);
   SearchWindow near = window;
   near.half_xy = 2.0 * cell;
+  near.half_theta = std::min(window.half_theta, options_.wide_window_rad);
+  Estimate at_centre = estimator_.estimate(observation, near);
   near.half_theta =
       std::min(window.half_theta, std::max(2.0 * wide.step_theta, options_.min_half_theta));
-  Estimate at_centre = estimator_.estimate(observation, near);
+  if (!on_map(estimator_.map(), rough.pose)) return at_centre;  // the coarse copy's rim
   near.center = rough.pose;
   Estimate at_rough = estimator_.estimate(observation, near);
-  return at_rough.score > at_centre.score ? at_rough : at_centre;
+  Estimate best = at_rough.score > at_centre.score ? at_rough : at_centre;
+  if (peaks > 1) *look_alikes = other_places(rough, best.pose);
+  return best;
+}
+
+bool Localizer::coarse_contains(const Pose2& pose) const {
+  const PaddedGrid& grid = coarse_->level(0);
+  const double cell = coarse_->options().resolution;
+  const Pose2 local = estimator_.map().geometry.to_grid_frame(pose);
+  const double ix = std::floor(local.x / cell), iy = std::floor(local.y / cell);
+  return ix >= 0.0 && iy >= 0.0 && ix < grid.width && iy < grid.height;
+}
+
+std::vector<Pose2> Localizer::other_places(const Estimate& rough, const Pose2& chosen) const {
+  const HypothesisSetOptions& set = options_.hypothesis_set;
+  std::vector<Pose2> others;
+  for (const Hypothesis& peak : rough.alternatives) {
+    const bool apart = std::hypot(peak.pose.x - chosen.x, peak.pose.y - chosen.y) > set.merge_xy ||
+                       std::abs(normalize_angle(peak.pose.theta - chosen.theta)) > set.merge_theta;
+    const bool kept = apart && peak.score >= options_.split_ratio * rough.score;
+    if (kept && on_map(estimator_.map(), peak.pose)) others.push_back(peak.pose);
+  }
+  return others;
 }
 
 Estimate Localizer::best_near(const Pose2& pose, const Observation& observation,

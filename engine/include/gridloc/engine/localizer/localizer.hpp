@@ -58,6 +58,12 @@ struct LocalizerOptions {
   /// observation (a scan matched to the wrong place, or a slip: the place follows it, and the
   /// next observation tells which).
   double step_min_m = 0.1;
+  /// A place whose window grew wider than these (a long drive with nothing to match) splits
+  /// into the look-alikes its window holds, at par: the weights tell them apart as it drives.
+  double wide_window_m = 1.0;
+  double wide_window_rad = 0.5235987756;  ///< 30 deg
+  /// ...those scoring at least this share of the window's best on the coarse copy.
+  double split_ratio = 0.9;
   double step_min_rad = 0.0349065850399;  ///< 2 deg
   /// A place the scan does not pin is carried by the odometry, and stays `localized` while
   /// its grown covariance is within these (1 sigma).
@@ -182,9 +188,11 @@ class Localizer {
                                         const Observation& observation) const;
   /// One place carried by `moved` (its covariance grown by `travelled_m` and the turn) and
   /// re-scored in its window; nullopt when the carried pose leaves the map.
+  /// With `look_alikes`, a window wider than wide_window_m or wide_window_rad also gives
+  /// the other places in it scoring split_ratio of its best (on the coarse copy).
   std::optional<TrackedHypothesis> follow_one(TrackedHypothesis hypothesis, const Pose2& moved,
-                                              double travelled_m,
-                                              const Observation& observation) const;
+                                              double travelled_m, const Observation& observation,
+                                              std::vector<Pose2>* look_alikes) const;
   /// Starts a re-search when the track is lost (or ambiguous long enough), runs its next
   /// slices (all of them at the first observation) and, once it is done, lets its places
   /// join `tracked`. Returns the finished search's estimate.
@@ -206,7 +214,12 @@ class Localizer {
   bool surprising(const TrackedHypothesis& predicted, const Pose2& placed) const;
   /// The window's estimate; a window wider than three coarse cells is searched on the
   /// coarse copy first, then within two coarse cells of its best on the tracker's grids.
-  Estimate search_window(const Observation& observation, const SearchWindow& window) const;
+  Estimate search_window(const Observation& observation, const SearchWindow& window,
+                         std::vector<Pose2>* look_alikes = nullptr) const;
+  /// Whether a window centred at `pose` lies on the coarse copy's grid.
+  bool coarse_contains(const Pose2& pose) const;
+  /// A coarse window's peaks apart from `chosen` and scoring split_ratio of its best.
+  std::vector<Pose2> other_places(const Estimate& rough, const Pose2& chosen) const;
   /// The best pose within two cells and two heading steps of `pose`.
   Estimate best_near(const Pose2& pose, const Observation& observation,
                      const SearchWindow& global) const;
