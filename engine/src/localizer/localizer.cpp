@@ -480,7 +480,10 @@ Estimate Localizer::search_window(const Observation& observation, const SearchWi
   if (!on_map(estimator_.map(), rough.pose)) return at_centre;  // the coarse copy's rim
   near.center = rough.pose;
   Estimate at_rough = estimator_.estimate(observation, near);
-  Estimate best = at_rough.score > at_centre.score ? at_rough : at_centre;
+  // The odometry's neighbourhood unless the far place is clearly better (a corridor turned
+  // round or shifted along reads nearly the same).
+  Estimate best =
+      at_rough.score > (1.0 + options_.far_place_margin) * at_centre.score ? at_rough : at_centre;
   if (peaks > 1) *look_alikes = other_places(rough, best.pose);
   return best;
 }

@@ -64,6 +64,9 @@ struct LocalizerOptions {
   double wide_window_rad = 0.5235987756;  ///< 30 deg
   /// ...those scoring at least this share of the window's best on the coarse copy.
   double split_ratio = 0.9;
+  /// In a wide window, a place away from the carried one replaces it only when it scores
+  /// this share more than the best near it.
+  double far_place_margin = 0.1;
   double step_min_rad = 0.0349065850399;  ///< 2 deg
   /// A place the scan does not pin is carried by the odometry, and stays `localized` while
   /// its grown covariance is within these (1 sigma).
