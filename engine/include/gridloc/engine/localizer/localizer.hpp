@@ -158,19 +158,18 @@ class Localizer {
   void add_odometry(const Pose2& odometry);
   /// A firing of the ring at the latest odometry pose (the odometry origin when none was
   /// given), as the driver publishes it (from_driver: +inf no echo, -inf too close); fuses it
-  /// with the drive and localizes: each hypothesis is re-scored by a windowed search around
-  /// it, carried by odometry. Without hypotheses (at first, or when every window left the
-  /// map or grew past max_half_xy_m) and after LocalizerOptions::misses_before_global `not
-  /// localized` answers in a row, a global search adds its seeds (seed_hypotheses; none when
-  /// it is `not localized`); while the answer is `ambiguous`, once reseed_after_m has been
-  /// driven since the last global search, one adds its seeds (near the hypothesis when only
-  /// one is tracked). Then merge_and_prune; the answer is set_estimate's.
+  /// with the drive and localizes (engine/doc/tracking.md): each tracked place is carried by
+  /// odometry and re-scored in a window, and weighed; without places (at first), after
+  /// misses_before_global misses in a row of the heaviest, or while `ambiguous` once
+  /// reseed_after_m has been driven, a search of the whole map starts (at the first
+  /// observation it runs whole; later in slices, a few per call) and its places join with
+  /// their entry weights; the answer is weighted_estimate's, through the jump gate.
   /// `time_s` must be finite; this version does not use it otherwise. Throws gridloc::Error
   /// for bad readings (the state is then unchanged).
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
   /// A laser scan (sensor frame) at the latest odometry pose, for a Localizer built with a
-  /// LaserSensor: fused with the drive's earlier scans (fuse_scans) and localized as a
-  /// firing is. Ranges at or beyond LaserSensor::max_range (or the scan's own max_range)
+  /// LaserSensor: alone, or with LaserSensor::fuse_drive fused with the drive's earlier scans
+  /// (fuse_scans), and localized as a firing is. Ranges at or beyond LaserSensor::max_range (or the scan's own max_range)
   /// are no return. Throws gridloc::Error for a scan that fails validate(), or on a sonar
   /// Localizer (and a firing on a laser one).
   void add_observation(double time_s, const RangeScan& scan);
