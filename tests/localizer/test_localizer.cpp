@@ -162,6 +162,18 @@ TEST(Localizer, BadInputIsRefusedAndLeavesTheStateAsItWas) {
   options = {};
   options.misses_before_global = 0;
   test::expect_error([&] { Localizer bad(map, ring(), options); }, {"misses_before_global"});
+  options = {};
+  options.far_place_margin = -0.5;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"far_place_margin"});
+  options = {};
+  options.weights.entry_weight = 2.0;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"entry_weight"});
+  options = {};
+  options.jump_gate.settle_updates = 0;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"settle_updates"});
+  options = {};
+  options.research.slices_per_update = 0;
+  test::expect_error([&] { Localizer bad(map, ring(), options); }, {"slices_per_update"});
 }
 
 }  // namespace

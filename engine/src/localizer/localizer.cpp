@@ -47,6 +47,12 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           "odometry_score_slack", options.odometry_score_slack, "must lie in [0, 1)");
   require(options.split_ratio > 0.0 && options.split_ratio <= 1.0, "split_ratio",
           options.split_ratio, "must lie in (0, 1]");
+  require(finite_at_least(options.far_place_margin, 0.0), "far_place_margin",
+          options.far_place_margin, "must be finite and >= 0");
+  require(finite_at_least(options.wide_window_m, 0.0) && options.wide_window_m > 0.0,
+          "wide_window_m", options.wide_window_m, "must be finite and > 0");
+  require(options.wide_window_rad > 0.0 && std::isfinite(options.wide_window_rad),
+          "wide_window_rad", options.wide_window_rad, "must be finite and > 0");
   require(finite_at_least(options.step_min_m, 0.0), "step_min_m", options.step_min_m,
           "must be finite and >= 0");
   require(finite_at_least(options.step_min_rad, 0.0), "step_min_rad", options.step_min_rad,
