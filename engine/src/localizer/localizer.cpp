@@ -118,14 +118,12 @@ bool on_map(const OccupancyMap& map, const Pose2& pose) {
   return map.geometry.contains(cell.ix, cell.iy);
 }
 
-/// The state after an observation's estimate: the set now refers to `taken_at`, and the
-/// `not localized` answers in a row are counted.
+/// The state after an observation's estimate: the set now refers to `taken_at`.
 void take_estimate(LocalizerState& state, const Estimate& e, const Pose2& taken_at) {
   state.estimate = e;
   state.set_odometry = taken_at;
   state.travelled_m = 0.0;
   state.turned_rad = 0.0;
-  state.misses = e.verdict == Verdict::NotLocalized ? state.misses + 1 : 0;
 }
 
 }  // namespace
@@ -183,7 +181,6 @@ void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) 
   state_.set_odometry = state_.odometry.value_or(Pose2{});
   state_.travelled_m = 0.0;
   state_.turned_rad = 0.0;
-  state_.misses = 0;
   state_.search.reset();
   state_.gate.reset();
 }

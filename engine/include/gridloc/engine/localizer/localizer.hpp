@@ -124,7 +124,6 @@ struct LocalizerState {
   Pose2 set_odometry;                  ///< the odometry pose the set's poses refer to
   double travelled_m = 0.0;            ///< odometry path length since set_odometry
   double turned_rad = 0.0;             ///< odometry turning since set_odometry
-  int misses = 0;                      ///< observations in a row that were `not localized`
   double since_global_m = 0.0;         ///< odometry path length since the last global search
   double since_weights_m = 0.0;        ///< path length since the weights last took evidence
   double since_weights_rad = 0.0;      ///< turning since then
@@ -169,9 +168,9 @@ class Localizer {
   void add_observation(double time_s, const std::vector<double>& driver_ranges);
   /// A laser scan (sensor frame) at the latest odometry pose, for a Localizer built with a
   /// LaserSensor: alone, or with LaserSensor::fuse_drive fused with the drive's earlier scans
-  /// (fuse_scans), and localized as a firing is. Ranges at or beyond LaserSensor::max_range (or the scan's own max_range)
-  /// are no return. Throws gridloc::Error for a scan that fails validate(), or on a sonar
-  /// Localizer (and a firing on a laser one).
+  /// (fuse_scans), and localized as a firing is. Ranges at or beyond LaserSensor::max_range (or the
+  /// scan's own max_range) are no return. Throws gridloc::Error for a scan that fails validate(),
+  /// or on a sonar Localizer (and a firing on a laser one).
   void add_observation(double time_s, const RangeScan& scan);
   /// The latest firing's estimate (pose, covariance, verdict, hypotheses with their
   /// weights); gridloc::Error before the first firing.
