@@ -20,6 +20,7 @@
 #include "limit_options.hpp"
 #include "options.hpp"
 #include "track_render.hpp"
+#include "track_trials.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -43,6 +44,7 @@ struct TrackArgs {
   LogSplitOptions split;
   GlobalTrialOptions trials;  ///< --trials N (0: track the log once)
   int trial_count = 0;
+  std::string shard;  ///< --shard K/N
 };
 
 /// What the summary counts over the processed scans.
@@ -216,73 +218,34 @@ void print_summary(const TrackTally& tally, bool truth) {
   }
 }
 
-/// The verdict and error of one answer, for a trial's JSON.
-nlohmann::json answer_json(const TrackStep& step, const GlobalTrialOptions& options) {
-  return {{"index", step.index},           {"verdict", to_string(step.estimate.verdict)},
-          {"right", right(step, options)}, {"error_m", step.error_m},
-          {"error_deg", step.error_deg},   {"travelled_m", step.travelled_m},
-          {"timing_ms", step.timing_ms}};
-}
-
-/// What the trials' summary counts.
-struct TrialTally {
-  int trials = 0, standstill_right = 0, standstill_wrong = 0, end_right = 0, end_wrong = 0;
-  int localized = 0;
-  double localized_after_m = 0.0;
-
-  void add(const GlobalTrial& trial, const GlobalTrialOptions& options) {
-    ++trials;
-    const auto wrong = [&](const TrackStep& step) {
-      return step.estimate.verdict == Verdict::Localized && !right(step, options);
-    };
-    standstill_right += right(trial.standstill, options);
-    standstill_wrong += wrong(trial.standstill);
-    end_right += right(trial.end, options);
-    end_wrong += wrong(trial.end);
-    if (trial.localized_after_m) {
-      ++localized;
-      localized_after_m += *trial.localized_after_m;
-    }
-  }
-  nlohmann::json to_json() const {
-    const auto share = [this](int n) { return trials > 0 ? 100.0 * n / trials : 0.0; };
-    return {{"trials", trials},
-            {"standstill_success_pct", share(standstill_right)},
-            {"standstill_localized_wrong_pct", share(standstill_wrong)},
-            {"drive_success_pct", share(end_right)},
-            {"drive_localized_wrong_pct", share(end_wrong)},
-            {"mean_localized_after_m",
-             number_or_null(localized > 0 ? localized_after_m / localized : std::nan(""))}};
-  }
-};
-
-/// --trials: global localization from a standstill and from a drive, from seeded starts.
+/// --trials: global localization from a standstill and from a drive, from seeded starts
+/// (with --shard, this shard's trials and a summary of them naming the shard).
 void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap& map,
                 const LogTrackingOptions& options) {
   Localizer localizer(map, options.laser, options.localizer);
   GlobalTrialOptions trials = args.trials;
   trials.trials = args.trial_count;
-  TrialTally tally;
+  if (!args.shard.empty()) trials.shard = parse_shard(args.shard);
+  std::vector<nlohmann::json> lines;
   run_global_trials(log, localizer, options, options.scans, trials, [&](const GlobalTrial& trial) {
-    tally.add(trial, trials);
+    lines.push_back(trial_json(trial, trials));
     if (args.json) {
-      const nlohmann::json line = {
-          {"trial", tally.trials - 1},
-          {"start", trial.start},
-          {"standstill", answer_json(trial.standstill, trials)},
-          {"end", answer_json(trial.end, trials)},
-          {"localized_after_m", number_or_null(trial.localized_after_m.value_or(std::nan("")))},
-          {"wrong_localized", trial.wrong_localized}};
-      std::cout << line.dump() << "\n" << std::flush;
+      std::cout << lines.back().dump() << "\n" << std::flush;
     } else {
-      std::fprintf(stderr, "\rtrial %d/%d   ", tally.trials, trials.trials);
+      std::fprintf(stderr, "\rtrial %d/%d   ", trial.trial + 1, trials.trials);
     }
   });
+  nlohmann::json summary = {{"summary", trials_summary(lines)}};
+  if (!args.shard.empty()) {
+    summary["shard"] = {{"index", trials.shard.index + 1},
+                        {"count", trials.shard.count},
+                        {"trials", trials.trials}};
+  }
   if (args.json) {
-    std::cout << nlohmann::json{{"summary", tally.to_json()}}.dump() << "\n";
+    std::cout << summary.dump() << "\n";
   } else {
     std::fprintf(stderr, "\n");
-    std::cout << tally.to_json().dump(2) << "\n";
+    std::cout << summary.dump(2) << "\n";
   }
 }
 
@@ -313,6 +276,10 @@ void write_plot(const TrackArgs& args, const CarmenLog& log, const OccupancyMap&
 }
 
 void run(const TrackArgs& args) {
+  if (!args.shard.empty()) {  // refused before the map and the log are read
+    if (args.trial_count < 1) throw Error("--shard splits --trials: give --trials N too");
+    parse_shard(args.shard);
+  }
   const OccupancyMap map = load_map(args.map);
   CarmenOptions carmen;
   carmen.limits = limits();
@@ -384,6 +351,10 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
       ->capture_default_str();
   cmd->add_option("--drive-m", args.trials.drive_m, "--trials: the drive's length (m)")
       ->capture_default_str();
+  cmd->add_option("--shard", args.shard,
+                  "--trials: run only shard K of N (1-based K/N: the trials t with t % N == "
+                  "K - 1, each exactly as in the whole run); `gridloc merge` joins the shards' "
+                  "--json outputs");
   cmd->add_option("--drop-ratio", args.drop_ratio,
                   "hypotheses scoring less than this share of the best are dropped; while two "
                   "survive the answer is ambiguous")

@@ -19,6 +19,7 @@ void add_sectors(CLI::App& app);
 void add_track(CLI::App& app);
 void add_disambiguate(CLI::App& app);
 void add_team(CLI::App& app);
+void add_merge(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& pose);
 /// A number, or null when it is NaN (an AUROC without failures, a rate of nothing).

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   gridloc::cli::add_disambiguate(app);
   gridloc::cli::add_team(app);
   gridloc::cli::add_track(app);
+  gridloc::cli::add_merge(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

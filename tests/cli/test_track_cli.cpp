@@ -143,6 +143,61 @@ TEST_F(TrackCli, GlobalTrialsReportEachTrialAndASummary) {
   EXPECT_GE(summary["drive_success_pct"].get<double>(), 0.0);
 }
 
+/// `json` without its "timing_ms" fields (the only ones that differ between two runs).
+nlohmann::json without_timings(nlohmann::json json) {
+  if (!json.is_object()) return json;
+  json.erase("timing_ms");
+  for (auto& [key, value] : json.items()) value = without_timings(value);
+  return json;
+}
+
+TEST_F(TrackCli, TwoShardsMergedAreOneRun) {
+  const std::string trials = "--global --trials 5 --drive-m 1 ";
+  const std::vector<nlohmann::json> whole = track(trials);
+  std::vector<std::string> files;
+  for (const char* shard : {"2/2", "1/2"}) {
+    const test::CliRun run =
+        run_cli(dir, "track --map " + quote(map) + " --log " + quote(log) +
+                         " --max-range 3 --json --truth-from-log " + trials + "--shard " + shard);
+    ASSERT_EQ(run.status, 0) << run.err;
+    files.push_back(dir.write(std::string("shard") + shard[0] + ".jsonl", run.out));
+  }
+  const nlohmann::json last = nlohmann::json::parse(lines(test::read_file(files[0])).back());
+  EXPECT_EQ(last["shard"]["index"].get<int>(), 2);
+  EXPECT_EQ(last["summary"]["trials"].get<int>(), 2);  // trials 1 and 3
+  const test::CliRun merged = run_cli(dir, "merge " + quote(files[0]) + " " + quote(files[1]));
+  ASSERT_EQ(merged.status, 0) << merged.err;
+  const std::vector<std::string> merged_lines = lines(merged.out);
+  ASSERT_EQ(merged_lines.size(), whole.size());
+  for (std::size_t k = 0; k < whole.size(); ++k) {
+    EXPECT_EQ(without_timings(nlohmann::json::parse(merged_lines[k])), without_timings(whole[k]))
+        << "line " << k;
+  }
+  // Bad shards: a missing one, one given twice, shards of another run, a whole run, a line
+  // that is not JSON, a shard that did not finish.
+  expect_cli_error(run_cli(dir, "merge " + quote(files[0])), {"shard 1/2", "missing"});
+  expect_cli_error(run_cli(dir, "merge " + quote(files[0]) + " " + quote(files[0])),
+                   {"shard 2", "also"});
+  const test::CliRun other = run_cli(dir, "track --map " + quote(map) + " --log " + quote(log) +
+                                              " --max-range 3 --json --global --trials 4 "
+                                              "--drive-m 1 --shard 1/2");
+  const std::string other_file = dir.write("other.jsonl", other.out);
+  expect_cli_error(run_cli(dir, "merge " + quote(files[0]) + " " + quote(other_file)),
+                   {"not one run"});
+  std::string whole_text;
+  for (const nlohmann::json& line : whole) whole_text += line.dump() + "\n";
+  expect_cli_error(run_cli(dir, "merge " + quote(dir.write("whole.jsonl", whole_text))),
+                   {"not a shard", "--shard"});
+  expect_cli_error(run_cli(dir, "merge " + quote(dir.write("bad.jsonl", "{\"trial\": 1}\nnope\n"))),
+                   {"bad.jsonl:1", "trial"});
+  const std::string cut = test::read_file(files[1]);
+  expect_cli_error(
+      run_cli(dir, "merge " + quote(files[0]) + " " +
+                       quote(dir.write("cut.jsonl", cut.substr(0, cut.find("\n") + 1)))),
+      {"cut.jsonl", "did not finish"});
+  expect_cli_error(run_cli(dir, "merge " + quote(dir.file("none.jsonl"))), {"none.jsonl"});
+}
+
 TEST_F(TrackCli, BadInputIsOneErrorLine) {
   const std::string base = "track --map " + quote(map) + " --log " + quote(log) + " ";
   expect_cli_error(run_cli(dir, base + "--prior 1,2,0 --global"), {"--prior", "--global"});
@@ -154,6 +209,9 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --odometry-noise 0.02"), {"--odometry-noise"});
   expect_cli_error(run_cli(dir, base + "--prior 1,x,0"), {"--prior"});
   expect_cli_error(run_cli(dir, base + "--prior-from-log --trials 2"), {"--trials", "--global"});
+  expect_cli_error(run_cli(dir, base + "--global --trials 2 --shard 3/2"), {"--shard", "3/2"});
+  expect_cli_error(run_cli(dir, base + "--global --trials 2 --shard two"), {"--shard", "K/N"});
+  expect_cli_error(run_cli(dir, base + "--global --shard 1/2"), {"--shard", "--trials"});
   expect_cli_error(run_cli(dir, base + "--global --part odd"), {"--part", "odd"});
   expect_cli_error(run_cli(dir, "track --map " + quote(map) + " --global --log " +
                                     quote(dir.file("missing.log"))),

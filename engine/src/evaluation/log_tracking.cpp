@@ -203,13 +203,17 @@ void run_global_trials(const CarmenLog& log, Localizer& localizer,
   if (!(options.drive_m >= 0.0) || !std::isfinite(options.drive_m)) {
     throw Error("global trials: the drive length must be finite and >= 0");
   }
+  validate(options.shard);
   Rng rng(options.seed);
   for (int t = 0; t < options.trials; ++t) {
     const std::size_t first = static_cast<std::size_t>(rng.uniform() * candidates.size());
+    if (!options.shard.owns(t)) continue;  // every start is drawn: the shards see the same
     LogTrackingOptions noisy = tracking;
     noisy.seed = tracking.seed + static_cast<std::uint64_t>(t);
-    on_trial(global_trial(log, localizer, noisy, candidates, std::min(first, candidates.size() - 1),
-                          options));
+    GlobalTrial trial = global_trial(log, localizer, noisy, candidates,
+                                     std::min(first, candidates.size() - 1), options);
+    trial.trial = t;
+    on_trial(trial);
   }
 }
 

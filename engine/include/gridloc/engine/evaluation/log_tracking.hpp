@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "gridloc/engine/evaluation/shard.hpp"
 #include "gridloc/engine/localizer/localizer.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 #include "gridloc/sensors/odometry_noise.hpp"
@@ -86,9 +87,11 @@ struct GlobalTrialOptions {
   std::uint64_t seed = 1;   ///< draws the starts; trial t's odometry noise has seed + t
   double success_m = 0.10;  ///< an answer within these of the log's pose is right (laser)
   double success_deg = 2.0;
+  Shard shard;  ///< runs only this shard's trials (every trial's start and seed unchanged)
 };
 
 struct GlobalTrial {
+  int trial = 0;  ///< its number among options.trials (0-based)
   std::size_t start = 0;
   TrackStep standstill;                     ///< the first scan's answer
   TrackStep end;                            ///< the answer at the end of the drive
@@ -101,8 +104,9 @@ bool right(const TrackStep& step, const GlobalTrialOptions& options);
 
 /// Runs options.trials trials (starts drawn uniformly from `candidates`, the increasing scan
 /// indices a trial may use, e.g. a log's held-out part) with `tracking`'s odometry and noise
-/// (its prior is ignored: global), calling `on_trial` after each. Throws gridloc::Error for
-/// bad options or no candidates.
+/// (its prior is ignored: global), calling `on_trial` after each, in order. With a shard,
+/// only its trials run, each as in the whole run. Throws gridloc::Error for bad options or
+/// no candidates.
 void run_global_trials(const CarmenLog& log, Localizer& localizer,
                        const LogTrackingOptions& tracking,
                        const std::vector<std::size_t>& candidates,
