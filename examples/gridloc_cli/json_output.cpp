@@ -30,6 +30,7 @@ nlohmann::json to_json(const Estimate& estimate) {
           {"score", estimate.score},
           {"normalized_score", estimate.normalized_score},
           {"second_score", estimate.second_score},
+          {"second_below_floor", estimate.second_below_floor},
           {"confidence", estimate.confidence},
           {"confidence_parts",
            {{"fit", estimate.confidence_parts.fit},

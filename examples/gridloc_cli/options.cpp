@@ -147,6 +147,11 @@ void SearchArgs::add_to(CLI::App* cmd) {
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
+  cmd->add_option("--second-peak-floor", second_peak_floor,
+                  "bnb: look for the hypotheses after the winner only among poses scoring at "
+                  "least this share of it (0: all, exact second_score; below the floor "
+                  "second_score is the floor and second_below_floor true)")
+      ->capture_default_str();
 }
 
 void SearchArgs::apply(CorrelationOptions& options) const {
@@ -167,6 +172,10 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.budget_ms = budget_ms;
   options.heading_intervals = heading_intervals;
   options.second_peak = !no_second_peak;
+  if (!(second_peak_floor >= 0.0 && second_peak_floor < 1.0)) {
+    throw Error("--second-peak-floor must lie in [0, 1), got " + std::to_string(second_peak_floor));
+  }
+  options.second_peak_floor = second_peak_floor;
   if (hypotheses < 1 || hypotheses > 100) {
     throw Error("--hypotheses must lie in [1, 100], got " + std::to_string(hypotheses));
   }

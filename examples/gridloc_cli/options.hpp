@@ -38,6 +38,7 @@ struct SearchArgs {
   double budget_ms = 0.0;
   bool heading_intervals = false;
   bool no_second_peak = false;
+  double second_peak_floor = CorrelationOptions{}.second_peak_floor;
   int hypotheses = CorrelationOptions{}.hypotheses;
   int covariance_cells = CorrelationOptions{}.covariance_cells;
 

@@ -138,6 +138,88 @@ TEST(SearchBranchAndBound, ExclusionGivesTheBestPoseOutsideIt) {
   }
 }
 
+/// A random search case of ExclusionGivesTheBestPoseOutsideIt's kind, with its heading grids.
+struct RandomSearch {
+  EvidenceGrid grid;
+  std::vector<SparseLocalGrid> locals;
+  Lattice lattice;
+  std::optional<PaddedGrid> padded;
+  std::optional<BoundPyramid> pyramid;
+  SearchLevel level() const { return level_of(*padded, locals); }
+};
+
+RandomSearch random_search(std::mt19937& rng, int c) {
+  RandomSearch r;
+  const int w = uniform_int(rng, 2, 30), h = uniform_int(rng, 2, 30);
+  r.grid = make_grid(rng, w, h, static_cast<GridKind>(c % static_cast<int>(GridKind::Count)));
+  const int headings = uniform_int(rng, 1, 5);
+  int extent = 0;
+  for (int it = 0; it < headings; ++it) {
+    r.locals.push_back(make_local(rng, uniform_int(rng, 1, 40), uniform_int(rng, 0, 8), 1));
+    extent = std::max(extent, r.locals.back().extent());
+  }
+  r.lattice = make_lattice(rng, w, h, headings);
+  r.padded = pad_grid(r.grid, extent, ArcRule::Neutral);
+  r.pyramid = make_bound_pyramid(*r.padded, bound_depth_for(r.lattice));
+  return r;
+}
+
+TEST(SearchBranchAndBound, KeepShareScoresEveryPoseNearTheBestWithTheSameWinner) {
+  std::mt19937 rng(91);
+  int kept = 0;
+  for (int c = 0; c < 200; ++c) {
+    const RandomSearch r = random_search(rng, c);
+    const SearchLevel level = r.level();
+    const SearchResult all = search_exhaustive(r.lattice, level);
+    BranchAndBoundOptions options;
+    options.keep_share = c % 2 == 0 ? 0.8 : 0.5;
+    options.threads = c % 3 == 0 ? 2 : 1;
+    const HeadingGrids grids(r.lattice, level);
+    const SearchResult b = search_branch_and_bound(r.lattice, grids, *r.pyramid, options);
+    EXPECT_EQ(b.best.ix, all.best.ix) << c;
+    EXPECT_EQ(b.best.iy, all.best.iy) << c;
+    EXPECT_EQ(b.best.it, all.best.it) << c;
+    EXPECT_EQ(b.best.score, all.best.score) << c;
+    EXPECT_TRUE(b.proven_optimal) << c;
+    if (all.best.score <= 0.0) continue;  // the share of a score <= 0 keeps nothing more
+    std::set<std::tuple<int, int, int>> scored;
+    for (const LatticePose& p : b.scored) scored.insert({p.ix, p.iy, p.it});
+    for (const LatticePose& p : all.scored) {
+      if (p.score < options.keep_share * all.best.score) continue;
+      EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << c << ": a pose within the share unscored";
+      ++kept;
+    }
+  }
+  EXPECT_GT(kept, 200);
+}
+
+TEST(SearchBranchAndBound, MinScoreFindsTheBestWhenItReachesItAndOnlyThen) {
+  std::mt19937 rng(92);
+  int above = 0, below = 0;
+  for (int c = 0; c < 200; ++c) {
+    const RandomSearch r = random_search(rng, c);
+    const SearchLevel level = r.level();
+    const SearchResult all = search_exhaustive(r.lattice, level);
+    BranchAndBoundOptions options;
+    options.min_score = all.best.score + (c % 2 == 0 ? -0.5 : 0.5);
+    const HeadingGrids grids(r.lattice, level);
+    const SearchResult b = search_branch_and_bound(r.lattice, grids, *r.pyramid, options);
+    if (all.best.score >= options.min_score) {
+      ++above;
+      EXPECT_EQ(b.best.ix, all.best.ix) << c;
+      EXPECT_EQ(b.best.iy, all.best.iy) << c;
+      EXPECT_EQ(b.best.it, all.best.it) << c;
+      EXPECT_EQ(b.best.score, all.best.score) << c;
+      EXPECT_TRUE(b.found) << c;
+    } else {
+      ++below;
+      EXPECT_TRUE(!b.found || b.best.score < options.min_score) << c;
+    }
+  }
+  EXPECT_GT(above, 50);
+  EXPECT_GT(below, 50);
+}
+
 TEST(SearchBranchAndBound, AllZeroGridGoesToTheFirstPoseAndPrunesTheRest) {
   std::mt19937 rng(3);
   GridGeometry geo;

@@ -347,41 +347,60 @@ namespace gridloc {
 namespace {
 
 // Branch and bound is exact: the same lattice winner, score and second distinct score as
-// the exhaustive search, on noisy observations in every room.
+// the exhaustive search, on noisy observations in every room: with every hypothesis (floor
+// 0: one search each after the winner), and with floors (one pass: the hypotheses that
+// reach the floor's share of the winner, then the floor as a bound of the next).
 TEST(CorrelationEstimatorBnb, EqualsExhaustive) {
   const SonarRing ring = load_sonar_ring(test::ring_path());
-  for (const char* name : {"room_rect", "room_l", "room_furnished"}) {
-    const OccupancyMap map = load_ros_map(test::map_path(name));
-    CorrelationOptions exhaustive, bnb;
-    exhaustive.strategy = SearchStrategy::Exhaustive;
-    bnb.strategy = SearchStrategy::BranchAndBound;
-    exhaustive.hypotheses = bnb.hypotheses = 4;  // the top 4 distinct poses, exactly
-    const CorrelationEstimator a(map, ring, exhaustive), b(map, ring, bnb);
-    Rng rng(7);
-    for (int t = 0; t < 6; ++t) {
-      const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
-      const Observation obs{
-          simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()))};
-      SearchWindow w;
-      w.center = {truth.x - 0.4, truth.y + 0.5, truth.theta - 0.3};
-      const Estimate ea = a.estimate(obs, w), eb = b.estimate(obs, w);
-      EXPECT_EQ(ea.lattice_pose.x, eb.lattice_pose.x) << name << " " << t;
-      EXPECT_EQ(ea.lattice_pose.y, eb.lattice_pose.y) << name << " " << t;
-      EXPECT_EQ(ea.lattice_pose.theta, eb.lattice_pose.theta) << name << " " << t;
-      EXPECT_EQ(ea.score, eb.score) << name << " " << t;
-      EXPECT_EQ(ea.second_score, eb.second_score) << name << " " << t;
-      EXPECT_EQ(ea.pose.x, eb.pose.x) << name << " " << t;
-      ASSERT_EQ(ea.alternatives.size(), 4u) << name << " " << t;
-      ASSERT_EQ(eb.alternatives.size(), 4u) << name << " " << t;
-      for (std::size_t k = 0; k < 4; ++k) {
-        EXPECT_EQ(ea.alternatives[k].score, eb.alternatives[k].score) << name << " " << t;
-        EXPECT_EQ(ea.alternatives[k].pose.x, eb.alternatives[k].pose.x) << name << " " << t;
-        EXPECT_EQ(ea.alternatives[k].pose.y, eb.alternatives[k].pose.y) << name << " " << t;
-        EXPECT_EQ(ea.alternatives[k].pose.theta, eb.alternatives[k].pose.theta) << name;
+  int below_floor = 0;
+  for (const double floor : {0.0, CorrelationOptions{}.second_peak_floor, 0.97}) {
+    for (const char* name : {"room_rect", "room_l", "room_furnished"}) {
+      const OccupancyMap map = load_ros_map(test::map_path(name));
+      CorrelationOptions exhaustive, bnb;
+      exhaustive.strategy = SearchStrategy::Exhaustive;
+      bnb.strategy = SearchStrategy::BranchAndBound;
+      exhaustive.hypotheses = bnb.hypotheses = 4;  // the top 4 distinct poses, exactly
+      exhaustive.second_peak_floor = bnb.second_peak_floor = floor;
+      const CorrelationEstimator a(map, ring, exhaustive), b(map, ring, bnb);
+      Rng rng(7);
+      for (int t = 0; t < 6; ++t) {
+        const std::string what =
+            std::string(name) + " " + std::to_string(t) + " floor " + std::to_string(floor);
+        const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
+        const Observation obs{
+            simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()))};
+        SearchWindow w;
+        w.center = {truth.x - 0.4, truth.y + 0.5, truth.theta - 0.3};
+        const Estimate ea = a.estimate(obs, w), eb = b.estimate(obs, w);
+        EXPECT_EQ(ea.lattice_pose.x, eb.lattice_pose.x) << what;
+        EXPECT_EQ(ea.lattice_pose.y, eb.lattice_pose.y) << what;
+        EXPECT_EQ(ea.lattice_pose.theta, eb.lattice_pose.theta) << what;
+        EXPECT_EQ(ea.score, eb.score) << what;
+        EXPECT_EQ(ea.second_score, eb.second_score) << what;
+        EXPECT_EQ(ea.second_below_floor, eb.second_below_floor) << what;
+        EXPECT_EQ(ea.confidence, eb.confidence) << what;
+        EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
+        ASSERT_EQ(ea.alternatives.size(), eb.alternatives.size()) << what;
+        if (floor == 0.0) {
+          EXPECT_EQ(ea.alternatives.size(), 4u) << what;
+        }
+        for (std::size_t k = 0; k < ea.alternatives.size(); ++k) {
+          EXPECT_EQ(ea.alternatives[k].score, eb.alternatives[k].score) << what;
+          EXPECT_GE(ea.alternatives[k].score, floor * ea.score) << what;
+          EXPECT_EQ(ea.alternatives[k].pose.x, eb.alternatives[k].pose.x) << what;
+          EXPECT_EQ(ea.alternatives[k].pose.y, eb.alternatives[k].pose.y) << what;
+          EXPECT_EQ(ea.alternatives[k].pose.theta, eb.alternatives[k].pose.theta) << what;
+        }
+        if (ea.second_below_floor) {
+          ++below_floor;
+          EXPECT_EQ(ea.second_score, floor * ea.score) << what;
+          EXPECT_EQ(ea.alternatives.size(), 1u) << what;
+        }
+        EXPECT_LT(eb.stats.poses_scored, ea.stats.poses_scored) << what;
       }
-      EXPECT_LT(eb.stats.poses_scored, ea.stats.poses_scored) << name << " " << t;
     }
   }
+  EXPECT_GT(below_floor, 0);  // the floor's branch ran
 }
 
 }  // namespace

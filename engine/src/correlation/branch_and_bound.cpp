@@ -86,6 +86,8 @@ class Search {
       found_ = true;
       best_score_.store(best_.score);
     }
+    // Leaves below the floor never become the incumbent; nodes bounded below it are dropped.
+    if (options_.min_score > best_score_.load()) best_score_.store(options_.min_score);
     if (options_.budget_ms > 0.0) {
       deadline_ = std::chrono::steady_clock::now() +
                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -343,22 +345,35 @@ class Search {
     return positive + free_weight * negative;
   }
 
-  /// Could the node hold a pose better than the incumbent? Reads the incumbent's score
-  /// without the lock first: it only ever rises, so a stale value never drops a node that
-  /// could win; only a bound equal to it needs the exact test.
+  /// Should the node be expanded: could it hold a pose better than the incumbent, or one
+  /// within keep_share of it? Reads the incumbent's score without the lock first: it only
+  /// ever rises, so a stale value never drops a node that could win; only a bound equal to
+  /// it needs the exact test.
   bool promising_fast(const Node& node) const {
     const double incumbent = best_score_.load(std::memory_order_relaxed);
+    if (keeps(node, incumbent)) return true;
     if (node.bound < incumbent) return false;
     if (node.bound > incumbent) return true;
     std::lock_guard<std::mutex> lock(mutex_);
     return promising(node);
   }
-  /// Exact test, under the lock. An equal score wins only at a lower index, and the node's
-  /// lowest index is its first pose.
+  /// Exact test, under the lock.
   bool promising(const Node& node) const {
+    return could_win(node) || (found_ && keeps(node, best_.score));
+  }
+  /// Whether the node could hold a pose better than the incumbent (or reach min_score while
+  /// there is none). An equal score wins only at a lower index, and the node's lowest index
+  /// is its first pose.
+  bool could_win(const Node& node) const {
+    if (node.bound < options_.min_score) return false;
     if (!found_) return true;
     if (node.bound != best_.score) return node.bound > best_.score;
     return index_less(node.heading, node.y, node.x, best_);
+  }
+  /// Whether keep_share asks for the node: its bound reaches that share of `incumbent`.
+  bool keeps(const Node& node, double incumbent) const {
+    return options_.keep_share < 1.0 && incumbent > 0.0 &&
+           node.bound >= options_.keep_share * incumbent;
   }
 
   /// Takes the best promising node of thread t's heap, or else steals one from another
@@ -421,15 +436,16 @@ class Search {
     std::vector<Node> open;
     for (const auto& heap : heaps_) {
       for (const Node& node : heap) {
-        if (promising(node)) open.push_back(node);
+        if (could_win(node)) open.push_back(node);
       }
     }
     if (stopped && !found_ && !open.empty()) dive(open);
     result_.best = best_;
+    result_.found = found_;
     result_.proven_optimal = true;
     result_.upper_bound = best_.score;
     for (const Node& node : open) {
-      if (!promising(node)) continue;  // (the dive may have raised the incumbent)
+      if (!could_win(node)) continue;  // (the dive may have raised the incumbent)
       result_.proven_optimal = false;
       result_.upper_bound = std::max(result_.upper_bound, node.bound);
     }

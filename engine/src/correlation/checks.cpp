@@ -28,6 +28,10 @@ void check(const CorrelationOptions& options) {
     throw Error("correlation options: hypotheses must be in [1, 100], got " +
                 std::to_string(options.hypotheses));
   }
+  if (!(options.second_peak_floor >= 0.0 && options.second_peak_floor < 1.0)) {
+    throw Error("correlation options: second_peak_floor must lie in [0, 1), got " +
+                std::to_string(options.second_peak_floor));
+  }
   if (options.covariance_cells < 0 || options.covariance_cells > 20) {
     throw Error("correlation options: covariance_cells must be in [0, 20], got " +
                 std::to_string(options.covariance_cells));

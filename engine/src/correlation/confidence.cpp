@@ -36,8 +36,7 @@ Exclusion neighbourhood(const LatticePose& p, double res, const Lattice& lattice
 std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double res,
                                         const Lattice& lattice, const CorrelationOptions& options,
                                         std::size_t max_count) {
-  std::stable_sort(scored.begin(), scored.end(),
-                   [](const LatticePose& a, const LatticePose& b) { return a.score > b.score; });
+  std::sort(scored.begin(), scored.end(), better);  // a total order: any scoring order
   std::vector<LatticePose> peaks;
   for (const auto& c : scored) {
     const bool distinct = std::none_of(peaks.begin(), peaks.end(), [&](const LatticePose& p) {

@@ -156,45 +156,94 @@ std::optional<LatticePose> best_outside(const std::vector<LatticePose>& seen,
   return best;
 }
 
+/// The winner and the distinct hypotheses after it; `floor` set when the search for the
+/// next one found no distinct pose scoring options.second_peak_floor of the winner or more
+/// (then that share of its score is an upper bound of the next one's score).
+struct Peaks {
+  std::vector<LatticePose> poses;
+  std::optional<double> floor;
+};
+
+/// The score below which branch and bound does not look for hypotheses after the winner.
+double hypothesis_floor(const SearchResult& result, const CorrelationOptions& options) {
+  return options.second_peak_floor > 0.0 && result.best.score > 0.0
+             ? options.second_peak_floor * result.best.score
+             : -std::numeric_limits<double>::infinity();
+}
+
+/// Whether branch and bound finds the hypotheses after the winner in its own search: it
+/// keeps every node that could hold a pose scoring second_peak_floor of the incumbent
+/// (BranchAndBoundOptions::keep_share), so the distinct peaks above the floor are among the
+/// poses it scored. Not under a budget, which could stop the search before them.
+bool hypotheses_in_one_pass(const CorrelationOptions& options, int hypotheses) {
+  return options.strategy == SearchStrategy::BranchAndBound && options.second_peak &&
+         hypotheses > 1 && options.second_peak_floor > 0.0 && options.budget_ms <= 0.0;
+}
+
+/// The distinct peaks among the scored poses that reach the floor (all of them without
+/// one), in the greedy order of distinct_peaks. The exhaustive search scored every pose, and
+/// the one-pass branch and bound (hypotheses_in_one_pass) every pose reaching the floor, so
+/// each peak is the exact best outside the ones before it. Fewer than wanted: the next one
+/// scores less than the floor (or no pose is distinct from them; the floor bounds it too).
+Peaks peaks_above_floor(const WindowSearch& search, const CorrelationOptions& options) {
+  const double floor = hypothesis_floor(search.result, options);
+  std::vector<LatticePose> above;
+  for (const LatticePose& p : search.result.scored) {
+    if (p.score >= floor) above.push_back(p);
+  }
+  const auto wanted = static_cast<std::size_t>(options.hypotheses);
+  Peaks peaks{distinct_peaks(std::move(above), options.resolution, search.lattice, options, wanted),
+              std::nullopt};
+  if (peaks.poses.size() < wanted && std::isfinite(floor)) peaks.floor = floor;
+  return peaks;
+}
+
 /// The hypotheses of branch and bound, which scores few poses: each next distinct pose is
 /// found exactly, by a search that leaves out the neighbourhoods of those found, starting from
 /// the best pose outside them that an earlier search scored (the greedy order of
-/// distinct_peaks). Later searches get what is left of options.budget_ms since `start`.
-std::vector<LatticePose> exact_hypotheses(WindowSearch& search, const CorrelationOptions& options,
-                                          std::chrono::steady_clock::time_point start) {
+/// distinct_peaks), and dropping what cannot reach the floor. Later searches get what is left
+/// of options.budget_ms since `start`.
+Peaks exact_hypotheses(WindowSearch& search, const CorrelationOptions& options,
+                       std::chrono::steady_clock::time_point start) {
   const auto wanted = static_cast<std::size_t>(options.hypotheses);
   BranchAndBoundOptions& bnb = search.bnb;
   SearchResult& result = search.result;
-  std::vector<LatticePose> peaks{result.best};
+  Peaks peaks{{result.best}, std::nullopt};
   std::vector<LatticePose> seen = result.scored;
-  while (peaks.size() < wanted) {
-    bnb.exclude.push_back(neighbourhood(peaks.back(), options.resolution, search.lattice, options));
+  bnb.min_score = hypothesis_floor(result, options);
+  while (peaks.poses.size() < wanted) {
+    bnb.exclude.push_back(
+        neighbourhood(peaks.poses.back(), options.resolution, search.lattice, options));
     bnb.incumbent = best_outside(seen, bnb.exclude);
     SearchResult next;
     next.best = bnb.incumbent.value_or(LatticePose{});
     if (options.budget_ms > 0.0) bnb.budget_ms = options.budget_ms - elapsed_ms(start);
-    if (options.second_peak && (options.budget_ms <= 0.0 || bnb.budget_ms > 0.0)) {
+    const bool searched = options.second_peak && (options.budget_ms <= 0.0 || bnb.budget_ms > 0.0);
+    if (searched) {
       next = search_branch_and_bound(search.lattice, *search.grids, search.pyramid, bnb);
       seen.insert(seen.end(), next.scored.begin(), next.scored.end());
       result.poses_scored += next.poses_scored;
       result.cells_scored += next.cells_scored;
+      if (!next.found || next.best.score < bnb.min_score) {  // none distinct reaches the floor
+        peaks.floor = bnb.min_score;
+        break;
+      }
     }
     if (!bnb.incumbent && next.poses_scored == 0) break;  // every other pose is excluded
-    peaks.push_back(next.best);
+    peaks.poses.push_back(next.best);
   }
   return peaks;
 }
 
 /// Estimate::alternatives as lattice poses: up to options.hypotheses distinct ones, the
 /// winner first.
-std::vector<LatticePose> this_many_hypotheses(WindowSearch& search,
-                                              const CorrelationOptions& options,
-                                              std::chrono::steady_clock::time_point start) {
-  if (options.strategy == SearchStrategy::BranchAndBound) {
+Peaks this_many_hypotheses(WindowSearch& search, const CorrelationOptions& options,
+                           std::chrono::steady_clock::time_point start) {
+  if (options.strategy == SearchStrategy::BranchAndBound &&
+      !hypotheses_in_one_pass(options, options.hypotheses)) {
     return exact_hypotheses(search, options, start);
   }
-  return distinct_peaks(search.result.scored, options.resolution, search.lattice, options,
-                        static_cast<std::size_t>(options.hypotheses));
+  return peaks_above_floor(search, options);
 }
 
 /// peak_covariance() of the winner within `cells`, reusing branch and bound's heading grids.
@@ -281,6 +330,9 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   check_resources(map_.geometry, options_, reach_,
                   search_size(lattice, levels.front(), options_.strategy, level_count, false));
   WindowSearch search(lattice, levels, pyramid_);
+  if (hypotheses_in_one_pass(options_, hypotheses)) {
+    search.bnb.keep_share = options_.second_peak_floor;
+  }
   search_lattice(search, options_);
   const LatticePose& best = search.result.best;
 
@@ -296,8 +348,10 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   const double mass =
       levels.front().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
-  const std::vector<LatticePose> peaks = this_many_hypotheses(search, peak_options, start);
-  e.second_score = peaks.size() > 1 ? peaks[1].score : e.score;
+  const Peaks found = this_many_hypotheses(search, peak_options, start);
+  const std::vector<LatticePose>& peaks = found.poses;
+  e.second_score = peaks.size() > 1 ? peaks[1].score : found.floor.value_or(e.score);
+  e.second_below_floor = peaks.size() == 1 && found.floor.has_value();
   for (const auto& p : peaks) {
     e.alternatives.push_back(
         {lattice_to_world(map_.geometry, lattice, options_.resolution, p.ix, p.iy, p.it), p.score});
@@ -305,7 +359,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   if (options_.covariance_cells > 0) {
     e.covariance = winner_covariance(search, options_.covariance_cells, map_.geometry.yaw);
   }
-  judge(e, peaks.size() > 1, options_.verdict);
+  judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
   fill_stats(e, search.result, level_count, start);
   return e;
 }

@@ -61,6 +61,9 @@ struct Estimate {
   double score = 0.0;             ///< S = sum L * G at lattice_pose (seed 001 eq. 1)
   double normalized_score = 0.0;  ///< score / sum |L|: 1 when every local cell matches fully
   double second_score = 0.0;      ///< best score of a pose distinct from the winner
+  /// No distinct pose scores CorrelationOptions::second_peak_floor of the winner or more:
+  /// second_score is that floor, an upper bound (so the distinctness is a lower bound).
+  bool second_below_floor = false;
   /// In [0, 1]: agreement * fit * distinctness * sharpness (ConfidenceParts).
   double confidence = 0.0;
   ConfidenceParts confidence_parts;

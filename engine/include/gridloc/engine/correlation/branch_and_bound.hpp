@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -160,6 +161,16 @@ struct BranchAndBoundOptions {
   /// `exclude` that an earlier search scored): prunes from the start. It must lie outside
   /// `exclude`; the result is it when nothing beats it.
   std::optional<LatticePose> incumbent;
+  /// Only poses scoring at least this are candidates: a node whose bound is below it is
+  /// dropped (a valid bound: none of its poses reaches it). When no pose reaches it the
+  /// result is the incumbent, or a pose scoring less (SearchResult::best.score < min_score
+  /// says so); a second peak below a share of the winner changes no verdict.
+  double min_score = -std::numeric_limits<double>::infinity();
+  /// Below 1: also expand every node whose bound reaches this share of the incumbent's
+  /// (positive) score, so that SearchResult::scored holds every pose scoring at least this
+  /// share of the best (the incumbent only rises: none is dropped). The best pose is the
+  /// same; the hypotheses after it come from `scored` in the same pass.
+  double keep_share = 1.0;
   /// Anytime search: stop after about this many milliseconds (0: no limit) and return the
   /// best pose so far, with SearchResult::proven_optimal false when open blocks could still
   /// hold a better one, and SearchResult::upper_bound the most any pose could score.

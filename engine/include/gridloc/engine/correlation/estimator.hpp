@@ -63,6 +63,14 @@ struct CorrelationOptions {
   /// are the best distinct poses the first search happened to score, lower bounds, so
   /// `confidence` is then optimistic (0 when it scored none).
   bool second_peak = true;
+  /// The hypotheses after the winner are looked for only among poses scoring at least this
+  /// share of it (0: all), by every strategy; branch and bound then finds them in its one
+  /// search (BranchAndBoundOptions::keep_share; under a budget, one search each). Below it a second
+  /// peak changes no verdict (ambiguity needs VerdictOptions::ambiguity_ratio, 0.97) and little
+  /// confidence: the distinctness is then computed with the floor as the second score, a lower
+  /// bound (at 0.8 at least 0.952 of what the exact second peak would give), and
+  /// Estimate::second_below_floor says so. The search stays exact above the floor.
+  double second_peak_floor = 0.8;
   /// Estimate::covariance from the poses within covariance_cells cells and as many heading
   /// steps of the lattice winner (at most (2k+1)^3 extra scores; 0 turns it off).
   int covariance_cells = 3;

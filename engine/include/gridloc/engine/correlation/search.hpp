@@ -182,6 +182,9 @@ struct SearchLevel {
 
 struct SearchResult {
   LatticePose best;
+  /// False when no pose was a candidate (branch and bound: all excluded, or none reached
+  /// BranchAndBoundOptions::min_score and there was no incumbent); `best` is then no pose.
+  bool found = true;
   bool proven_optimal = true;       ///< false when a budget stopped a search early
   double upper_bound = 0.0;         ///< no pose scores more (= best.score when proven optimal)
   std::vector<LatticePose> scored;  ///< every finest-level pose scored, in scoring order

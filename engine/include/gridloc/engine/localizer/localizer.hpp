@@ -24,8 +24,13 @@
 namespace gridloc {
 
 struct LocalizerOptions {
-  /// The search; its reach_m is raised to cover the ring along the whole drive window.
-  CorrelationOptions correlation;
+  /// The search; its reach_m is raised to cover the ring along the whole drive window. Its
+  /// second_peak_floor is 0: a tracker seeds places from peaks well below the best too.
+  CorrelationOptions correlation = [] {
+    CorrelationOptions options;
+    options.second_peak_floor = 0.0;
+    return options;
+  }();
   /// Which past firings join the latest (distance, turn, count).
   DriveWindowOptions drive;
   /// The window around a prior spans this many standard deviations of its covariance...
