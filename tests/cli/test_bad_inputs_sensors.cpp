@@ -105,7 +105,7 @@ const std::vector<BadInputCase> kSensorCases = {
      {"global grid at 0.0001 m", "--max-cells"}},
     {"StepXyGlobalOverMemory",
      {kReadings},
-     kLocalize + "--readings {dir}/readings.json --global --step-xy 4e-3",
+     kLocalize + "--readings {dir}/readings.json --global --step-xy 4e-3 --max-memory-mb 1000",
      {"would need about", "--max-memory-mb"}},
     {"StepThetaNanoRadian",
      {kReadings},

@@ -63,6 +63,39 @@ TEST(BoundPyramid, LevelsArePooledGridsWithThePaddedGeometry) {
   EXPECT_THROW(make_bound_pyramid(padded, -1), Error);
 }
 
+// An evidence grid (-1/0/1) keeps its levels as int8 only: the pooled values, and its float
+// levels hold the geometry and no cells.
+TEST(BoundPyramid, ATernaryGridKeepsItsLevelsAsInt8Only) {
+  std::mt19937 rng(12);
+  const EvidenceGrid g = make_grid(rng, 11, 6, GridKind::Ternary);
+  const PaddedGrid padded = pad_grid(g, 2, ArcRule::Neutral);
+  const BoundPyramid p = make_bound_pyramid(padded, 3);
+  ASSERT_TRUE(p.ternary());
+  ASSERT_EQ(p.arc_max8.size(), 4u);
+  const int w = padded.grid.width(), h = padded.grid.height();
+  for (int level = 1; level <= 3; ++level) {
+    const auto l = static_cast<std::size_t>(level);
+    EXPECT_TRUE(p.arc_max[l].cells.empty());
+    EXPECT_TRUE(p.grid_min[l].cells.empty());
+    EXPECT_EQ(p.arc_max[l].width(), w);
+    EXPECT_EQ(p.grid_min[l].height(), h);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        float hi = -1e30f, lo = 1e30f;
+        for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
+          for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
+            hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
+            lo = std::min(lo, padded.grid.at(xx, yy));
+          }
+        }
+        const std::size_t k = padded.grid.geometry.index(x, y);
+        EXPECT_EQ(p.arc_max8[l][k], static_cast<std::int8_t>(hi));
+        EXPECT_EQ(p.grid_min8[l][k], static_cast<std::int8_t>(lo));
+      }
+    }
+  }
+}
+
 TEST(BoundDepthFor, CoversTheLatticeInOneBlock) {
   Lattice lat;
   lat.x0 = 3, lat.x1 = 3, lat.y0 = 5, lat.y1 = 5;

@@ -5,6 +5,7 @@
 #include <exception>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "gridloc/engine/correlation/branch_and_bound.hpp"
 #include "gridloc/grids/error.hpp"
@@ -14,6 +15,27 @@ namespace gridloc {
 namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
+
+}  // namespace
+
+namespace {
+
+/// BoundPyramid::arc_max_all, grid_min_all and abs_max of the level-0 grids.
+void fill_extremes(BoundPyramid& p, const std::vector<float>& arc, const std::vector<float>& grid) {
+  if (!arc.empty()) {
+    p.arc_max_all = *std::max_element(arc.begin(), arc.end());
+    p.grid_min_all = *std::min_element(grid.begin(), grid.end());
+  }
+  for (float v : arc) p.abs_max = std::max(p.abs_max, std::abs(v));
+  for (float v : grid) p.abs_max = std::max(p.abs_max, std::abs(v));
+}
+
+/// `grid` with its geometry and no cells: a level the bounds read only as int8.
+EvidenceGrid geometry_only(const EvidenceGrid& grid) {
+  EvidenceGrid shell;
+  shell.geometry = grid.geometry;
+  return shell;
+}
 
 }  // namespace
 
@@ -33,29 +55,44 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
   p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
   EvidenceGrid arc = global.grid;  // arc_view with the padded geometry
   arc.cells = global.arc_view;
+  fill_extremes(p, arc.cells, global.grid.cells);
+  // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
+  const float scale = int8_scale_for(global.grid.cells), arc_scale = int8_scale_for(arc.cells);
+  const bool int8 = scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale;
+  const auto to_int8 = [scale](const EvidenceGrid& g) {
+    return to_int8_with_slack(g.cells, scale);
+  };
+  if (int8) {
+    p.int8_scale = scale;
+    p.arc_max8.push_back(to_int8(arc));
+    p.grid_min8.push_back(to_int8(global.grid));
+  }
+  // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): the
+  // float ones are kept only while the next level is pooled from them, 5x less memory.
+  const bool keep_floats = !p.ternary();
+  EvidenceGrid arc_below, min_below;
   for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
     const auto l = static_cast<std::size_t>(h);
     const int half = 1 << (h - 1);
-    p.arc_max[l] = max_pool_doubled(h == 1 ? arc : p.arc_max[l - 1], half);
-    p.grid_min[l] = min_pool_doubled(h == 1 ? global.grid : p.grid_min[l - 1], half);
-  }
-  if (!arc.cells.empty()) {
-    p.arc_max_all = *std::max_element(arc.cells.begin(), arc.cells.end());
-    p.grid_min_all = *std::min_element(global.grid.cells.begin(), global.grid.cells.end());
-  }
-  for (float v : arc.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
-  for (float v : global.grid.cells) p.abs_max = std::max(p.abs_max, std::abs(v));
-  // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
-  const float scale = int8_scale_for(global.grid.cells), arc_scale = int8_scale_for(arc.cells);
-  if (scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale) {
-    p.int8_scale = scale;
-    auto to_int8 = [scale](const EvidenceGrid& g) { return to_int8_with_slack(g.cells, scale); };
-    p.arc_max8.push_back(to_int8(arc));
-    p.grid_min8.push_back(to_int8(global.grid));
-    for (int h = 1; h <= depth; ++h) {
-      p.arc_max8.push_back(to_int8(p.arc_max[static_cast<std::size_t>(h)]));
-      p.grid_min8.push_back(to_int8(p.grid_min[static_cast<std::size_t>(h)]));
+    const EvidenceGrid& arc_source = h == 1 ? arc : keep_floats ? p.arc_max[l - 1] : arc_below;
+    const EvidenceGrid& min_source = h == 1        ? global.grid
+                                     : keep_floats ? p.grid_min[l - 1]
+                                                   : min_below;
+    EvidenceGrid arc_level = max_pool_doubled(arc_source, half);
+    EvidenceGrid min_level = min_pool_doubled(min_source, half);
+    if (int8) {
+      p.arc_max8.push_back(to_int8(arc_level));
+      p.grid_min8.push_back(to_int8(min_level));
     }
+    if (keep_floats) {
+      p.arc_max[l] = std::move(arc_level);
+      p.grid_min[l] = std::move(min_level);
+      continue;
+    }
+    p.arc_max[l] = geometry_only(arc_level);
+    p.grid_min[l] = geometry_only(min_level);
+    arc_below = std::move(arc_level);
+    min_below = std::move(min_level);
   }
   return p;
 }

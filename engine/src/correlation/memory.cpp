@@ -15,6 +15,8 @@ constexpr double kPaddedGridBytes = 10.0;    // grid + arc_view (float) + their 
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
+constexpr double kTernaryLevelBytes = 2.0;   // an evidence grid's levels: int8 only...
+constexpr double kTernaryBuildBytes = 16.0;  // ...each pooled from the float level below
 constexpr double kPyramidBaseBytes = 2.0;    // int8 copies of level 0
 constexpr double kPoolingBytes = 8.0;        // the arc copy and a pooling pass's row buffer
 constexpr double kLocalCellBytes = 12.0;     // PlacedLocalGrid: offset, value, fixed (4 each)
@@ -47,7 +49,12 @@ LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& opti
   const GlobalGridSize size = global_grid_size(map, options.resolution, reach_m);
   const double padded = size.padded_cells();
   const double depth = bound_pyramid_depth(size);
-  return {(kPyramidLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
+  // A likelihood field's levels keep their floats; an evidence grid's (-1/0/1) only int8.
+  if (options.global == GlobalModel::LikelihoodField) {
+    return {(kPyramidLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
+  }
+  return {(kTernaryLevelBytes * depth + kPyramidBaseBytes) * padded,
+          (kPoolingBytes + kTernaryBuildBytes) * padded};
 }
 
 double search_bytes(const SearchSize& search) {

@@ -23,7 +23,9 @@ namespace gridloc {
 /// arc_max[h] is the PaddedGrid's arc_view max-pooled and grid_min[h] its grid min-pooled,
 /// cell (x, y) covering [x, x + 2^h) x [y, y + 2^h); both keep the padded geometry, so a
 /// PlacedLocalGrid's offsets apply unchanged. Level 0 is the PaddedGrid itself and is not
-/// copied: arc_max[0] and grid_min[0] are empty. A plain value, safe to copy or move.
+/// copied: arc_max[0] and grid_min[0] are empty. A ternary pyramid (below) keeps its levels
+/// only as int8, which is all its bounds read: its arc_max[h] and grid_min[h] then hold the
+/// geometry and no cells. A plain value, safe to copy or move.
 struct BoundPyramid {
   std::vector<EvidenceGrid> arc_max;   ///< [h] for h = 1..depth; [0] empty
   std::vector<EvidenceGrid> grid_min;  ///< [h] for h = 1..depth; [0] empty
