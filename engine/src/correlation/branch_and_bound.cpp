@@ -7,6 +7,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdlib>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <sstream>
@@ -51,6 +52,11 @@ void validate(const Lattice& lattice, const PaddedGrid& g, const BoundPyramid& p
     fail(m.str());
   }
 }
+
+/// Blocks of at most 2^this cells a side are searched depth first below the node taken from
+/// the heap (measured on intel's held-out global scans: 1.3-2.5x faster than best first all
+/// the way down for about as many cells bounded; deeper DFS bounds up to 2x more cells).
+constexpr int kDepthFirstLevel = 5;
 
 /// One branch-and-bound search: per-thread best-first heaps, the shared incumbent, the bounds.
 class Search {
@@ -143,6 +149,9 @@ class Search {
     explicit Worker(Search& s) : search(s) {}
     Search& search;
     std::vector<Node> children;
+    /// descend()'s children, one list per depth (a deque: growing it keeps the references
+    /// the shallower calls hold).
+    std::deque<std::vector<Node>> levels;
     std::vector<LatticePose> scored;
     long long cells = 0;
 
@@ -376,6 +385,47 @@ class Search {
            node.bound >= options_.keep_share * incumbent;
   }
 
+  /// Expands `node`: the children of a block wider than kDepthFirstLevel go to heap t (best
+  /// first over the whole search); those of a smaller one are visited at once, best first,
+  /// depth first (Cartographer's order: no heap to keep for the many small nodes). When the
+  /// search stops, the children not yet visited go back to heap t, so that finish() sees
+  /// every open node.
+  void descend(std::size_t t, const Node& node, Worker& worker, std::size_t depth) {
+    if (worker.levels.size() <= depth) worker.levels.resize(depth + 1);
+    worker.children.clear();
+    worker.expand(node);
+    std::vector<Node>& children = worker.levels[depth];
+    children.swap(worker.children);
+    std::sort(children.begin(), children.end(), visit_before);
+    if (node.block_level > kDepthFirstLevel) {  // coarse: back to the heap, best first
+      std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
+      for (const Node& child : children) {
+        heaps_[t].push_back(child);
+        std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+      }
+      return;
+    }
+    for (std::size_t k = 0; k < children.size(); ++k) {
+      if (out_of_time()) {
+        std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
+        for (std::size_t rest = k; rest < children.size(); ++rest) {
+          heaps_[t].push_back(children[rest]);
+          std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
+        }
+        return;
+      }
+      if (promising_fast(children[k])) descend(t, children[k], worker, depth + 1);
+    }
+  }
+
+  /// Whether the search was stopped, or its budget just ran out (then it stops).
+  bool out_of_time() {
+    if (stopped_.load(std::memory_order_relaxed)) return true;
+    if (!deadline_ || std::chrono::steady_clock::now() < *deadline_) return false;
+    stopped_ = true;
+    return true;
+  }
+
   /// Takes the best promising node of thread t's heap, or else steals one from another
   /// heap (so a thread whose share ran out helps the others). Counts it as in work.
   bool take(std::size_t t, Node& node) {
@@ -410,15 +460,7 @@ class Search {
           std::this_thread::yield();
           continue;
         }
-        worker.expand(node);
-        {
-          std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
-          for (const Node& child : worker.children) {
-            heaps_[t].push_back(child);
-            std::push_heap(heaps_[t].begin(), heaps_[t].end(), heap_less);
-          }
-        }
-        worker.children.clear();
+        descend(t, node, worker, 0);
         --active_;
       }
     } catch (...) {
