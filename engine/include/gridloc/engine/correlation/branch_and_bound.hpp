@@ -210,8 +210,9 @@ struct BranchAndBoundOptions {
 /// block, blocks otherwise.
 ///
 /// Best first (highest bound, then lowest first pose; one heap per thread) down to blocks of
-/// 32 cells a side, whose subtrees are then searched depth first, children best first (the
-/// order changes the work, never the result); a node is dropped
+/// 32 cells a side that lie at least 5 levels below the top, whose subtrees are then searched
+/// depth first, children best first (the order changes the work, never the result); a node
+/// is dropped
 /// when its bound is below the best score so far, or equal to it while it holds no pose of
 /// lower index; the search ends when no heap's best node can win. Result: `scored` holds
 /// only the leaf poses scored exactly (a partial score volume); poses_scored counts them;
