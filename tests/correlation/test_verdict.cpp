@@ -11,6 +11,7 @@
 #include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
+#include "localizer/laser_cases.hpp"
 #include "test_support.hpp"
 
 namespace gridloc {
@@ -46,6 +47,38 @@ TEST(Verdict, SymmetricRoomIsAmbiguousWithBothPlacesReturned) {
   EXPECT_TRUE((near(h0, truth) && near(h1, twin)) || (near(h0, twin) && near(h1, truth)))
       << "hypotheses (" << h0.x << ", " << h0.y << ", " << h0.theta << ") and (" << h1.x << ", "
       << h1.y << ", " << h1.theta << ")";
+}
+
+// Issue 35: where the building repeats itself, one laser scan searched over the whole map
+// says `ambiguous` and names both look-alikes, with the second peak found in the first
+// search (the default floor) and by one more search (floor 0) alike.
+TEST(Verdict, ALaserScanInOneOfTwinRoomsIsAmbiguousWithBothRooms) {
+  const OccupancyMap map = test::two_rooms();
+  const Pose2 truth{2.2, 5.2, 0.4};
+  const Pose2 twin{truth.x + 6.0, truth.y, truth.theta};  // the other room, 6 m east
+  Observation observation;
+  observation.scan = simulate_scan(map, truth, 360, 3.0, 0.0, 1);  // sees its own room only
+  for (const double floor : {CorrelationOptions{}.second_peak_floor, 0.0}) {
+    CorrelationOptions options;
+    options.resolution = 0.05;
+    options.reach_m = 3.0;
+    options.second_peak_floor = floor;
+    const CorrelationEstimator estimator(map, options);
+    const Estimate e = estimator.estimate(observation, estimator.global_window(observation));
+    EXPECT_EQ(e.verdict, Verdict::Ambiguous) << "floor " << floor;
+    ASSERT_EQ(e.alternatives.size(), 2u) << "floor " << floor;
+    const auto near = [](const Pose2& a, const Pose2& b) {
+      return std::hypot(a.x - b.x, a.y - b.y) <= 0.1 &&
+             std::abs(normalize_angle(a.theta - b.theta)) <= 0.05;
+    };
+    const Pose2& first = e.alternatives[0].pose;
+    const Pose2& second = e.alternatives[1].pose;
+    EXPECT_TRUE((near(first, truth) && near(second, twin)) ||
+                (near(first, twin) && near(second, truth)))
+        << "floor " << floor << ": " << first.x << "," << first.y << " and " << second.x << ","
+        << second.y;
+    EXPECT_FALSE(e.second_below_floor);
+  }
 }
 
 TEST(Verdict, AnAsymmetricRoomIsLocalizedWithHighConfidence) {

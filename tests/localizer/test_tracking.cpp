@@ -17,33 +17,9 @@
 namespace gridloc {
 namespace {
 
-constexpr double kRange = 6.0;
+using test::two_rooms;
 
-/// Two identical 4 m x 3 m rooms (x in [1, 5] and [7, 11], y in [4, 7]) with the same box
-/// in each, opening through a 1 m door in the south wall onto a corridor (y in [2, 3.95])
-/// from x = 0.5 to x = 15: the corridor's ends are what tell the rooms apart.
-OccupancyMap two_rooms() {
-  const double res = 0.05;
-  GridGeometry geometry;
-  geometry.resolution = res;
-  geometry.width = 320;
-  geometry.height = 160;
-  OccupancyMap map(geometry, CellState::Unknown);
-  const auto cell = [res](double v) { return static_cast<int>(std::lround(v / res)); };
-  const auto fill = [&](double x0, double x1, double y0, double y1, CellState state) {
-    for (int iy = cell(y0); iy < cell(y1); ++iy)
-      for (int ix = cell(x0); ix < cell(x1); ++ix) map.at(ix, iy) = state;
-  };
-  fill(0.45, 15.05, 1.95, 4.0, CellState::Occupied);  // the corridor's walls
-  fill(0.5, 15.0, 2.0, 3.95, CellState::Free);
-  for (double left : {1.0, 7.0}) {
-    fill(left - 0.05, left + 4.05, 3.95, 7.05, CellState::Occupied);
-    fill(left, left + 4.0, 4.0, 7.0, CellState::Free);
-    fill(left + 2.5, left + 3.5, 3.95, 4.0, CellState::Free);     // the door
-    fill(left + 0.5, left + 1.0, 6.0, 6.5, CellState::Occupied);  // the box
-  }
-  return map;
-}
+constexpr double kRange = 6.0;
 
 RangeScan scan_at(const OccupancyMap& map, const Pose2& pose) {
   return simulate_scan(map, pose, 360, kRange, 0.0, 1);
