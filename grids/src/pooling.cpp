@@ -131,24 +131,24 @@ Grid<float> pool_reference(const Grid<float>& g, int size) {
 /// is exact. Each pass is an elementwise Op of two contiguous runs, which the compiler turns
 /// into packed min/max instructions (MAXPS/MINPS with SSE2; see pool_doubled's test).
 template <class Op>
+void pool_doubled_in_place(Grid<float>& grid, int s) {
+  const int w = grid.width(), h = grid.height();
+  // Both passes read only cells they have not written yet (x + s and row y + s lie ahead).
+  for (int y = 0; y < h; ++y) {
+    float* o = grid.row(y);
+    for (int x = 0; x + s < w; ++x) o[x] = Op::packed(o[x], o[x + s]);
+  }
+  for (int y = 0; y + s < h; ++y) {
+    float* o = grid.row(y);
+    const float* b = grid.row(y + s);
+    for (int x = 0; x < w; ++x) o[x] = Op::packed(o[x], b[x]);
+  }
+}
+
+template <class Op>
 Grid<float> pool_doubled(const Grid<float>& pooled, int s) {
-  const int w = pooled.width(), h = pooled.height();
-  Grid<float> rows = pooled, out(pooled.geometry, 0.0f);
-  for (int y = 0; y < h; ++y) {
-    const float* a = pooled.row(y);
-    float* o = rows.row(y);
-    for (int x = 0; x + s < w; ++x) o[x] = Op::packed(a[x], a[x + s]);
-  }
-  for (int y = 0; y < h; ++y) {
-    const float* a = rows.row(y);
-    float* o = out.row(y);
-    if (y + s >= h) {
-      std::copy(a, a + w, o);
-      continue;
-    }
-    const float* b = rows.row(y + s);
-    for (int x = 0; x < w; ++x) o[x] = Op::packed(a[x], b[x]);
-  }
+  Grid<float> out = pooled;
+  pool_doubled_in_place<Op>(out, s);
   return out;
 }
 
@@ -162,6 +162,16 @@ Grid<float> max_pool_doubled(const Grid<float>& pooled, int size) {
 Grid<float> min_pool_doubled(const Grid<float>& pooled, int size) {
   check_size(size, "min_pool_doubled");
   return pool_doubled<Min>(pooled, size);
+}
+
+void max_pool_doubled_in_place(Grid<float>& pooled, int size) {
+  check_size(size, "max_pool_doubled_in_place");
+  pool_doubled_in_place<Max>(pooled, size);
+}
+
+void min_pool_doubled_in_place(Grid<float>& pooled, int size) {
+  check_size(size, "min_pool_doubled_in_place");
+  pool_doubled_in_place<Min>(pooled, size);
 }
 
 Grid<float> max_pool(const Grid<float>& g, int size) {

@@ -41,11 +41,10 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   const double padded = (100.0 + 46.0) * (80.0 + 46.0);
   // The map (1 B), the padded grid (10 B) and the unpadded build (6 B).
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 10.0 * padded + 6.0 * 8000.0);
-  // + 8 levels of 2 B (int8 only) and 2 B, pooling 8 B and the two float levels 16 B
+  // + 8 levels of 2 B (int8 only) and 2 B, pooling in two float working grids 8 B
   options.strategy = SearchStrategy::BranchAndBound;
-  EXPECT_EQ(
-      correlation_memory_bytes(map, options, 1.0),
-      8000.0 + 10.0 * padded + (2.0 * 8 + 2.0) * padded + std::max(6.0 * 8000, 24.0 * padded));
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
+            8000.0 + 10.0 * padded + (2.0 * 8 + 2.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
   options.global = GlobalModel::LikelihoodField;  // its levels keep their floats: 10 B each
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
             8000.0 + 10.0 * padded + (10.0 * 8 + 2.0) * padded +

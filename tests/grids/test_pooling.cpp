@@ -85,6 +85,26 @@ TEST(Pooling, DoubledEqualsReferenceOnRandomGrids) {
   EXPECT_THROW(max_pool_doubled(Grid<float>(geo, 0.0f), 0), Error);
 }
 
+// In place (the bound pyramid's levels, no allocation per level): the same bits.
+TEST(Pooling, DoubledInPlaceEqualsReferenceOnRandomGrids) {
+  std::mt19937 rng(78);
+  for (int c = 0; c < 200; ++c) {
+    const int w = uniform_int(rng, 1, 70), h = uniform_int(rng, 1, 50);
+    const Grid<float> g = random_grid(rng, w, h);
+    Grid<float> mx = g, mn = g;
+    for (int size = 1; size <= 64; size *= 2) {
+      max_pool_doubled_in_place(mx, size);
+      min_pool_doubled_in_place(mn, size);
+      EXPECT_EQ(mx.cells, max_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
+      EXPECT_EQ(mn.cells, min_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
+    }
+  }
+  GridGeometry geo;
+  geo.width = geo.height = 2;
+  Grid<float> zero(geo, 0.0f);
+  EXPECT_THROW(min_pool_doubled_in_place(zero, 0), Error);
+}
+
 TEST(Pooling, KeepsTheGeometry) {
   GridGeometry geo;
   geo.resolution = 0.05;

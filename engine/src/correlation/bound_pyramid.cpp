@@ -67,32 +67,22 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
     p.arc_max8.push_back(to_int8(arc));
     p.grid_min8.push_back(to_int8(global.grid));
   }
-  // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): the
-  // float ones are kept only while the next level is pooled from them, 5x less memory.
+  // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): its
+  // levels are pooled in place in two working grids, kept as int8 only (5x less memory, and
+  // no page of a new grid to fault in per level); other pyramids keep each float level.
   const bool keep_floats = !p.ternary();
-  EvidenceGrid arc_below, min_below;
+  EvidenceGrid arc_work = std::move(arc), min_work = global.grid;
   for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
     const auto l = static_cast<std::size_t>(h);
     const int half = 1 << (h - 1);
-    const EvidenceGrid& arc_source = h == 1 ? arc : keep_floats ? p.arc_max[l - 1] : arc_below;
-    const EvidenceGrid& min_source = h == 1        ? global.grid
-                                     : keep_floats ? p.grid_min[l - 1]
-                                                   : min_below;
-    EvidenceGrid arc_level = max_pool_doubled(arc_source, half);
-    EvidenceGrid min_level = min_pool_doubled(min_source, half);
+    max_pool_doubled_in_place(arc_work, half);
+    min_pool_doubled_in_place(min_work, half);
     if (int8) {
-      p.arc_max8.push_back(to_int8(arc_level));
-      p.grid_min8.push_back(to_int8(min_level));
+      p.arc_max8.push_back(to_int8(arc_work));
+      p.grid_min8.push_back(to_int8(min_work));
     }
-    if (keep_floats) {
-      p.arc_max[l] = std::move(arc_level);
-      p.grid_min[l] = std::move(min_level);
-      continue;
-    }
-    p.arc_max[l] = geometry_only(arc_level);
-    p.grid_min[l] = geometry_only(min_level);
-    arc_below = std::move(arc_level);
-    min_below = std::move(min_level);
+    p.arc_max[l] = keep_floats ? arc_work : geometry_only(arc_work);
+    p.grid_min[l] = keep_floats ? min_work : geometry_only(min_work);
   }
   return p;
 }

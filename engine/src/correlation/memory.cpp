@@ -15,10 +15,10 @@ constexpr double kPaddedGridBytes = 10.0;    // grid + arc_view (float) + their 
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
-constexpr double kTernaryLevelBytes = 2.0;   // an evidence grid's levels: int8 only...
-constexpr double kTernaryBuildBytes = 16.0;  // ...each pooled from the float level below
+constexpr double kTernaryLevelBytes = 2.0;   // an evidence grid's levels: int8 only, pooled
+                                             // in the two working grids of kPoolingBytes
 constexpr double kPyramidBaseBytes = 2.0;    // int8 copies of level 0
-constexpr double kPoolingBytes = 8.0;        // the arc copy and a pooling pass's row buffer
+constexpr double kPoolingBytes = 8.0;        // the two working grids pooled in place
 constexpr double kLocalCellBytes = 12.0;     // PlacedLocalGrid: offset, value, fixed (4 each)
 constexpr double kPointCellBytes = 16.0;     // PointCells: offset (8), x and y (4 + 4)
 constexpr double kHeadingBytes = 300.0;      // HeadingGrids::Entry and the search's node
@@ -53,8 +53,7 @@ LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& opti
   if (options.global == GlobalModel::LikelihoodField) {
     return {(kPyramidLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
   }
-  return {(kTernaryLevelBytes * depth + kPyramidBaseBytes) * padded,
-          (kPoolingBytes + kTernaryBuildBytes) * padded};
+  return {(kTernaryLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
 }
 
 double search_bytes(const SearchSize& search) {

@@ -19,6 +19,12 @@ Grid<float> max_pool_doubled(const Grid<float>& pooled, int size);
 /// As max_pool_doubled, with the minimum.
 Grid<float> min_pool_doubled(const Grid<float>& pooled, int size);
 
+/// max_pool_doubled in place, with no allocation: `pooled` = max_pool(g, size) becomes
+/// max_pool(g, 2 * size). Throws gridloc::Error if size < 1.
+void max_pool_doubled_in_place(Grid<float>& pooled, int size);
+/// As max_pool_doubled_in_place, with the minimum.
+void min_pool_doubled_in_place(Grid<float>& pooled, int size);
+
 /// Plain O(cells * size^2) loops computing what max_pool does: the oracle for tests.
 Grid<float> max_pool_reference(const Grid<float>& g, int size);
 /// Plain O(cells * size^2) loops computing what min_pool does: the oracle for tests.
