@@ -243,9 +243,9 @@ void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap&
   }
   if (args.json) {
     std::cout << summary.dump() << "\n";
-  } else {
+  } else {  // the summary alone, as before shards, or with its shard
     std::fprintf(stderr, "\n");
-    std::cout << summary.dump(2) << "\n";
+    std::cout << (args.shard.empty() ? summary["summary"] : summary).dump(2) << "\n";
   }
 }
 
