@@ -28,6 +28,20 @@ namespace {
 
 using namespace test;  // the shared search cases, random draws and checks
 
+/// The oracle: the max of the arc view and the min of the grid over the block of 2^level
+/// cells at (x, y), clipped at the padded grid's edge.
+std::pair<float, float> pooled_at(const PaddedGrid& padded, int level, int x, int y) {
+  const int w = padded.grid.width(), h = padded.grid.height();
+  float hi = -1e30f, lo = 1e30f;
+  for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
+    for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
+      hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
+      lo = std::min(lo, padded.grid.at(xx, yy));
+    }
+  }
+  return {hi, lo};
+}
+
 TEST(BoundPyramid, LevelsArePooledGridsWithThePaddedGeometry) {
   std::mt19937 rng(11);
   const EvidenceGrid g = make_grid(rng, 9, 7, GridKind::Floats);
@@ -47,13 +61,7 @@ TEST(BoundPyramid, LevelsArePooledGridsWithThePaddedGeometry) {
     ASSERT_EQ(mn.height(), h);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        float hi = -1e30f, lo = 1e30f;
-        for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
-          for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
-            hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
-            lo = std::min(lo, padded.grid.at(xx, yy));
-          }
-        }
+        const auto [hi, lo] = pooled_at(padded, level, x, y);
         EXPECT_EQ(mx.at(x, y), hi);
         EXPECT_EQ(mn.at(x, y), lo);
       }
@@ -81,13 +89,7 @@ TEST(BoundPyramid, ATernaryGridKeepsItsLevelsAsInt8Only) {
     EXPECT_EQ(p.grid_min[l].height(), h);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        float hi = -1e30f, lo = 1e30f;
-        for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
-          for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
-            hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
-            lo = std::min(lo, padded.grid.at(xx, yy));
-          }
-        }
+        const auto [hi, lo] = pooled_at(padded, level, x, y);
         const std::size_t k = padded.grid.geometry.index(x, y);
         EXPECT_EQ(p.arc_max8[l][k], static_cast<std::int8_t>(hi));
         EXPECT_EQ(p.grid_min8[l][k], static_cast<std::int8_t>(lo));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 #include "gridloc/grids/error.hpp"
 #include "random_cases.hpp"
@@ -66,41 +67,33 @@ TEST(Pooling, FastEqualsReferenceOnRandomGrids) {
 }
 
 // The vectorized doubling step (MAXPS/MINPS) equals the plain loops: a pyramid built level
-// from level is the pyramid pooled from scratch, bit for bit.
+// from level is the pyramid pooled from scratch, bit for bit; in place too (the bound
+// pyramid's levels, no allocation per level).
 TEST(Pooling, DoubledEqualsReferenceOnRandomGrids) {
-  std::mt19937 rng(77);
-  for (int c = 0; c < 200; ++c) {
-    const int w = uniform_int(rng, 1, 70), h = uniform_int(rng, 1, 50);
-    const Grid<float> g = random_grid(rng, w, h);
-    Grid<float> mx = g, mn = g;
-    for (int size = 1; size <= 64; size *= 2) {
-      mx = max_pool_doubled(mx, size);
-      mn = min_pool_doubled(mn, size);
-      EXPECT_EQ(mx.cells, max_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
-      EXPECT_EQ(mn.cells, min_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
+  for (const bool in_place : {false, true}) {
+    std::mt19937 rng(77);
+    for (int c = 0; c < 200; ++c) {
+      const int w = uniform_int(rng, 1, 70), h = uniform_int(rng, 1, 50);
+      const Grid<float> g = random_grid(rng, w, h);
+      Grid<float> mx = g, mn = g;
+      for (int size = 1; size <= 64; size *= 2) {
+        if (in_place) {
+          max_pool_doubled_in_place(mx, size);
+          min_pool_doubled_in_place(mn, size);
+        } else {
+          mx = max_pool_doubled(mx, size);
+          mn = min_pool_doubled(mn, size);
+        }
+        const std::string what = "case " + std::to_string(c) + " size " + std::to_string(size) +
+                                 (in_place ? " in place" : "");
+        EXPECT_EQ(mx.cells, max_pool_reference(g, 2 * size).cells) << what;
+        EXPECT_EQ(mn.cells, min_pool_reference(g, 2 * size).cells) << what;
+      }
     }
   }
   GridGeometry geo;
   geo.width = geo.height = 2;
   EXPECT_THROW(max_pool_doubled(Grid<float>(geo, 0.0f), 0), Error);
-}
-
-// In place (the bound pyramid's levels, no allocation per level): the same bits.
-TEST(Pooling, DoubledInPlaceEqualsReferenceOnRandomGrids) {
-  std::mt19937 rng(78);
-  for (int c = 0; c < 200; ++c) {
-    const int w = uniform_int(rng, 1, 70), h = uniform_int(rng, 1, 50);
-    const Grid<float> g = random_grid(rng, w, h);
-    Grid<float> mx = g, mn = g;
-    for (int size = 1; size <= 64; size *= 2) {
-      max_pool_doubled_in_place(mx, size);
-      min_pool_doubled_in_place(mn, size);
-      EXPECT_EQ(mx.cells, max_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
-      EXPECT_EQ(mn.cells, min_pool_reference(g, 2 * size).cells) << "case " << c << " " << size;
-    }
-  }
-  GridGeometry geo;
-  geo.width = geo.height = 2;
   Grid<float> zero(geo, 0.0f);
   EXPECT_THROW(min_pool_doubled_in_place(zero, 0), Error);
 }
