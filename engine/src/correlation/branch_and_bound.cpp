@@ -401,7 +401,6 @@ class Search {
     worker.expand(node);
     std::vector<Node>& children = worker.levels[depth];
     children.swap(worker.children);
-    std::sort(children.begin(), children.end(), visit_before);
     if (node.block_level > depth_first_level_) {  // coarse: back to the heap, best first
       std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
       for (const Node& child : children) {
@@ -410,6 +409,7 @@ class Search {
       }
       return;
     }
+    std::sort(children.begin(), children.end(), visit_before);
     for (std::size_t k = 0; k < children.size(); ++k) {
       if (out_of_time()) {
         std::lock_guard<std::mutex> lock(*heap_mutex_[t]);
