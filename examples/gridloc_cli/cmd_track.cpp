@@ -31,6 +31,7 @@ struct TrackArgs {
   std::string plot;  ///< --plot FILE.png
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
+  double localized_fit_ratio = LocalizerOptions{}.localized_fit_ratio;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
@@ -153,6 +154,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.hypothesis_set.drop_ratio = args.drop_ratio;
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
+  options.localizer.localized_fit_ratio = args.localized_fit_ratio;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.resolution = args.search_resolution;
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
@@ -325,6 +327,10 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
       ->capture_default_str();
   cmd->add_option("--evidence-per-scan", args.evidence_per_scan,
                   "log-likelihood per unit of a window's normalized score")
+      ->capture_default_str();
+  cmd->add_option("--localized-fit-ratio", args.localized_fit_ratio,
+                  "a window scoring below this share of its place's usual normalized score is "
+                  "not localized (0: no such rule)")
       ->capture_default_str();
   cmd->add_option("--search-resolution", args.search_resolution,
                   "cell (m) of the coarse copy of the map the whole-map searches run on, their "

@@ -116,6 +116,43 @@ TEST(Tracking, ASeededSlipIsNotLocalizedUntilTheTrackHasHeld) {
   EXPECT_TRUE(right(localizer.estimate(), path.back()));
 }
 
+// LocalizerOptions::localized_fit_ratio: a scan half hidden by people fits the tracked place
+// far worse than the scans before it; with the rule it is not `localized` (the place still
+// follows the window), without it the window's own verdict stands.
+TEST(Tracking, AScanFittingFarWorseThanUsualIsNotLocalizedUnderTheFitRule) {
+  const OccupancyMap map = two_rooms();
+  for (const double ratio : {0.0, 0.8}) {
+    LocalizerOptions options = laser_options();
+    options.localized_fit_ratio = ratio;
+    Localizer localizer(map, laser(), options);
+    std::vector<Pose2> path;  // east through room B
+    for (double x = 8.0; x < 10.5; x += 0.1) path.push_back({x, 5.5, 0.0});
+    localizer.add_odometry(path[0]);
+    localizer.set_prior(path[0], Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+    const std::size_t hidden = path.size() - 1;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      localizer.add_odometry(path[k]);
+      RangeScan scan = scan_at(map, path[k]);
+      if (k == hidden) {  // people 0.4 m away in front of 40 % of the beams
+        for (std::size_t i = 0; i < scan.ranges.size(); i += 5) {
+          scan.ranges[i] = scan.ranges[i + 1] = 0.4;
+        }
+      }
+      localizer.add_observation(double(k), scan);
+      const Estimate e = localizer.estimate();
+      if (k + 1 == hidden) ASSERT_EQ(e.verdict, Verdict::Localized) << "ratio " << ratio;
+      if (k == hidden) {
+        EXPECT_EQ(e.verdict, ratio > 0.0 ? Verdict::NotLocalized : Verdict::Localized)
+            << "ratio " << ratio;
+        EXPECT_LE(std::hypot(e.pose.x - path[k].x, e.pose.y - path[k].y), 0.1) << ratio;
+      }
+    }
+  }
+  LocalizerOptions bad = laser_options();
+  bad.localized_fit_ratio = 1.5;
+  EXPECT_THROW(Localizer(map, laser(), bad), Error);
+}
+
 TEST(Tracking, AReSearchRunsInSlicesAcrossUpdates) {
   const OccupancyMap map = two_rooms();
   LocalizerOptions options = laser_options();

@@ -63,6 +63,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.localized_sigma_rad, "must be finite and >= 0");
   require(options.miss_fit_ratio >= 0.0 && options.miss_fit_ratio <= 1.0, "miss_fit_ratio",
           options.miss_fit_ratio, "must lie in [0, 1]");
+  require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
+          "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
   require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
           options.odometry_turn_error_per_rad, "must be finite and >= 0");
   validate(options.drive);
@@ -414,6 +416,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     return;
   }
   hypothesis.misses = 0;
+  const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
   hypothesis.usual_fit = hypothesis.usual_fit > 0.0
                              ? 0.9 * hypothesis.usual_fit + 0.1 * e.normalized_score
                              : e.normalized_score;
@@ -429,6 +432,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     // A step the odometry did not make is not trusted yet (the place follows it: a slip
     // holds at the next observation, a wrong match does not).
     if (hypothesis.confirmed && surprising(hypothesis, e.pose)) e.verdict = Verdict::NotLocalized;
+    if (weak) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
     hypothesis.confirmed = true;
@@ -445,7 +449,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   const Eigen::Matrix3d& c = hypothesis.covariance;
   const bool tight = std::sqrt(std::max(c(0, 0), c(1, 1))) <= options_.localized_sigma_m &&
                      std::sqrt(c(2, 2)) <= options_.localized_sigma_rad;
-  e.verdict = tight && hypothesis.confirmed ? Verdict::Localized : Verdict::NotLocalized;
+  e.verdict = tight && hypothesis.confirmed && !weak ? Verdict::Localized : Verdict::NotLocalized;
 }
 
 bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& placed) const {

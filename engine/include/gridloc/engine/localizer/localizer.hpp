@@ -53,6 +53,11 @@ struct LocalizerOptions {
   /// explains nothing there (a miss, the place not moved), whatever its own verdict: a
   /// window always finds something, even for a robot carried elsewhere.
   double miss_fit_ratio = 0.5;
+  /// A window scoring below this share of the place's usual normalized score is not
+  /// `localized`, whatever its own verdict: the scan fits the place worse than the scans
+  /// before it did (a look-alike a corridor slid or turned the place into, or a view the map
+  /// lacks). The place still follows it; 0: no such rule.
+  double localized_fit_ratio = 0.0;
   /// The odometry's place (the best within two cells of where it carried the place) is kept
   /// when it scores within this share of the window's winner: the scan does not move a
   /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
