@@ -15,6 +15,13 @@ esac
 packages="cmake make g++ libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev \
   libgtest-dev libbenchmark-dev libopencv-core-dev libopencv-imgcodecs-dev libopencv-imgproc-dev \
   liboctomap-dev zlib1g-dev libboost-dev"
+# The test job also builds and runs the ROS 1 node's end-to-end test (examples/gridloc_ros).
+if [ "$job" = test ]; then
+  packages="$packages pkg-config ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev \
+  libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev \
+  python3-rospy python3-roslaunch python3-sensor-msgs python3-nav-msgs python3-std-srvs \
+  python3-tf2-msgs python3-geometry-msgs"
+fi
 missing=""
 for p in $packages; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

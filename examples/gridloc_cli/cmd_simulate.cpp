@@ -2,11 +2,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/rng.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
@@ -18,12 +20,46 @@ struct SimulateArgs {
   std::string map, ring, pose, out;
   bool realistic = false;
   int firings = 1;
+  bool scan = false;  ///< a laser scan (CSV) instead of sonar readings
+  int beams = 360;
+  double max_range = 20.0;
   SonarSimOptions sim;
   OctomapArgs octomap;
 };
 
+/// A laser scan at the pose, as `angle_rad,range_m` lines (what `localize --scan` reads).
+std::string scan_csv(const SimulateArgs& args, const OccupancyMap& map, const Pose2& pose) {
+  if (args.beams < 1 || args.beams > 100000) {
+    throw Error("--beams must lie in [1, 100000], got " + std::to_string(args.beams));
+  }
+  const RangeScan scan =
+      simulate_scan(map, pose, args.beams, args.max_range, args.sim.range_sigma_m, args.sim.seed);
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "# gridloc simulate --scan at " << pose.x << "," << pose.y << "," << pose.theta
+      << "; a range of " << args.max_range << " is no return\n";
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    csv << scan.angles[i] << "," << scan.ranges[i] << "\n";
+  }
+  return csv.str();
+}
+
+void write(const std::string& text, const std::string& path) {
+  if (path.empty()) {
+    std::cout << text;
+    return;
+  }
+  std::ofstream file(path);
+  if (!file) throw Error(path + ": cannot write the readings file");
+  file << text;
+}
+
 void run(const SimulateArgs& args) {
   const Pose2 pose = parse_pose(args.pose, "--pose");
+  if (args.scan) {
+    write(scan_csv(args, load_map(args.map, args.octomap.slice), pose), args.out);
+    return;
+  }
   SonarSimOptions options = args.sim;
   if (args.realistic) options = SonarSimOptions::realistic(args.sim.seed);
   if (args.firings < 1 || args.firings > 100) {
@@ -44,13 +80,7 @@ void run(const SimulateArgs& args) {
   }
   nlohmann::json out = {{"pose", to_json(pose)}, {"ranges_m", firings.front()}};
   if (args.firings > 1) out["firings_m"] = firings;
-  if (args.out.empty()) {
-    std::cout << out.dump(2) << "\n";
-    return;
-  }
-  std::ofstream file(args.out);
-  if (!file) throw Error(args.out + ": cannot write the readings file");
-  file << out.dump(2) << "\n";
+  write(out.dump(2) + "\n", args.out);
 }
 
 }  // namespace
@@ -79,6 +109,13 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("--firings", args->firings,
                   "consecutive firings from the pose (> 1: written as firings_m, which "
                   "localize filters for crosstalk)")
+      ->capture_default_str();
+  cmd->add_flag("--scan", args->scan,
+                "a laser scan instead: angle_rad,range_m lines (CSV, what localize --scan "
+                "reads), --beams over a full turn, --sigma noise, --seed");
+  cmd->add_option("--beams", args->beams, "--scan: beams over the full turn")
+      ->capture_default_str();
+  cmd->add_option("--max-range", args->max_range, "--scan: max range (m); no return reads this")
       ->capture_default_str();
   cmd->add_flag("--realistic", args->realistic,
                 "use the evaluation's realistic noise (overrides the noise options)");

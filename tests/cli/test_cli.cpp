@@ -96,6 +96,30 @@ TEST_F(Cli, SimulateToStdout) {
   EXPECT_EQ(j.at("ranges_m").size(), 14u);
 }
 
+// simulate --scan writes the CSV localize --scan reads: a reader without a scanner can run
+// the README's --scan examples.
+TEST_F(Cli, SimulateAScanThenLocalizeIt) {
+  const std::string scan = dir.file("scan.csv");
+  const CliRun sim =
+      run_cli(dir, "simulate --map " + quote(map) +
+                       " --pose 1,1,0.4 --scan --beams 180 --max-range 8 --out " + quote(scan));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const CliRun loc = run_cli(dir, "localize --map " + quote(map) + " --scan " + quote(scan) +
+                                      " --max-range 8 --prior 1.2,0.9,0.3");
+  ASSERT_EQ(loc.status, 0) << loc.err;
+  const auto j = nlohmann::json::parse(loc.out);
+  EXPECT_LE(std::hypot(j.at("pose").at("x").get<double>() - 1.0,
+                       j.at("pose").at("y").get<double>() - 1.0),
+            0.10)
+      << loc.out;
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(j.at("pose").at("theta").get<double>() - 0.4))), 2.0)
+      << loc.out;
+  const CliRun bad =
+      run_cli(dir, "simulate --map " + quote(map) + " --pose 1,1,0 --scan --beams 0");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.err.find("--beams must lie in [1, 100000], got 0"), std::string::npos) << bad.err;
+}
+
 TEST_F(Cli, MissingMapFile) {
   const std::string missing = dir.file("no_such_map.yaml");
   const std::string readings =
