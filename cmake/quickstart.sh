@@ -37,10 +37,12 @@ fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$jobs"
 
 if [ "$job" = demo ]; then
+  cmake --build build -j"$jobs" --target gridloc  # the tool only, not the tests and benchmarks
   ./build/examples/gridloc demo
+  echo "== the gridloc tool is $(pwd)/build/examples/gridloc ('gridloc --help' lists its commands)"
 else
+  cmake --build build -j"$jobs"
   cd build && ctest --output-on-failure -j"$jobs"
 fi

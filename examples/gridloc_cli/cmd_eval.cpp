@@ -20,6 +20,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "progress.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -227,12 +228,11 @@ void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& proto
   std::vector<EvalMap> maps;
   for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
   const SonarRing ring = load_sonar_ring(args.ring, limits());
-  const EvalReport report = run_evaluation(maps, ring, options, [&](int done, int total) {
-    if (args.quiet) return;
-    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu maps x %d trials, %zu configurations)", done,
-                 total, maps.size(), args.trials, options.configurations.size());
-    if (done == total) std::fprintf(stderr, "\n");
-  });
+  const std::string what = "poses (" + std::to_string(maps.size()) + " maps x " +
+                           std::to_string(args.trials) + " trials, " +
+                           std::to_string(options.configurations.size()) + " configurations)";
+  const EvalReport report =
+      run_evaluation(maps, ring, options, progress_line("eval", what, args.quiet));
 
   if (!args.trials_out.empty()) write_trials(args.trials_out, report, options);
   const double rejected = mean_rejected_sonars(report);

@@ -19,6 +19,7 @@
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "track_render.hpp"
 #include "track_trials.hpp"
 
@@ -229,12 +230,13 @@ void run_trials(const TrackArgs& args, const CarmenLog& log, const OccupancyMap&
   trials.trials = args.trial_count;
   if (!args.shard.empty()) trials.shard = parse_shard(args.shard);
   std::vector<nlohmann::json> lines;
+  const auto progress = progress_line("track", "trials", args.json);
   run_global_trials(log, localizer, options, options.scans, trials, [&](const GlobalTrial& trial) {
     lines.push_back(trial_json(trial, trials));
     if (args.json) {
       std::cout << lines.back().dump() << "\n" << std::flush;
     } else {
-      std::fprintf(stderr, "\rtrial %d/%d   ", trial.trial + 1, trials.trials);
+      progress(trial.trial + 1, trials.trials);
     }
   });
   nlohmann::json summary = {{"summary", trials_summary(lines)}};
@@ -291,6 +293,7 @@ void run(const TrackArgs& args) {
   if (!args.plot.empty()) check_plot_path(args.plot);
   TrackTally tally;
   std::vector<TrackStep> steps;
+  const auto progress = progress_line("track", "scans of the log", args.json);
   track_log(log, map, options, [&](const TrackStep& step) {
     tally.add(step, args.truth);
     if (!args.plot.empty()) steps.push_back(step);
@@ -298,8 +301,7 @@ void run(const TrackArgs& args) {
       std::cout << step_json(step, args.truth).dump() << "\n" << std::flush;
       return;
     }
-    std::fprintf(stderr, "\rscan %zu/%zu: %s, %.1f m driven   ", step.index + 1, log.lasers.size(),
-                 to_string(step.estimate.verdict).c_str(), step.travelled_m);
+    progress(static_cast<int>(step.index + 1), static_cast<int>(log.lasers.size()));
   });
   if (!args.plot.empty()) write_plot(args, log, map, std::move(steps), tally);
   if (!args.json) print_summary(tally, args.truth);

@@ -15,6 +15,7 @@
 #include "gridloc/sensors/sonar_ring.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -161,22 +162,6 @@ void print_engine_loop_table(const DisambiguationEvalArgs& args,
 
 }  // namespace
 
-/// A progress line: `\r` on a terminal, one line per tenth otherwise.
-std::function<void(int, int)> progress_line(const char* label, bool quiet) {
-  const bool terminal = isatty(fileno(stderr)) != 0;
-  return [label, quiet, terminal, last = -1](int done, int total) mutable {
-    if (quiet) return;
-    const int tenth = 10 * done / total;
-    if (terminal) {
-      std::fprintf(stderr, "\r[%s] %d/%d trials", label, done, total);
-      if (done == total) std::fprintf(stderr, "\n");
-    } else if (tenth != last) {
-      std::fprintf(stderr, "[%s] %d/%d trials\n", label, done, total);
-    }
-    last = tenth;
-  };
-}
-
 void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopInputs& inputs,
                           std::uint64_t seed, bool json, bool quiet) {
   const EngineDisambiguationOptions options = engine_loop_options(args, inputs, seed);
@@ -184,7 +169,7 @@ void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopIn
   for (const std::string& file : inputs.map_files) maps.push_back({file, load_map(file)});
   const SonarRing ring = load_sonar_ring(inputs.ring, limits());
   const std::vector<EngineDisambiguationResult> results = run_engine_disambiguation(
-      maps, ring, options, progress_line("eval disambiguation --sensor", quiet));
+      maps, ring, options, progress_line("eval disambiguation --sensor", "trials", quiet));
   if (json) {
     std::cout << engine_loop_json(args, options, results).dump(2) << "\n";
     return;
@@ -232,7 +217,7 @@ void run_disambiguation_eval(const DisambiguationEvalArgs& args, std::uint64_t s
                              bool quiet) {
   const DisambiguationProtocolOptions options = protocol_options(args, seed);
   const DisambiguationProtocolResult result =
-      run_disambiguation_protocol(options, progress_line("eval disambiguation", quiet));
+      run_disambiguation_protocol(options, progress_line("eval disambiguation", "trials", quiet));
   if (json) {
     std::cout << result_json(result).dump(2) << "\n";
     return;

@@ -27,10 +27,6 @@ struct EngineLoopInputs {
   int laser_beams = 360;
 };
 
-/// A progress callback (done, total) for stderr: `\r` on a terminal, one line per tenth
-/// otherwise; silent when `quiet`.
-std::function<void(int, int)> progress_line(const char* label, bool quiet);
-
 /// Registers --environments, --starts, --repeats, --points, --range, --algorithms, --strategies
 /// (they take effect with --protocol disambiguation).
 void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args);

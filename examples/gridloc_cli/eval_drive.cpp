@@ -11,6 +11,7 @@
 #include "gridloc/engine/evaluation/drive_protocol.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "progress.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -133,11 +134,8 @@ void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,
   std::vector<EvalMap> maps;
   for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
   const SonarRing ring = load_sonar_ring(args.ring, limits());
-  const DriveEvalReport report =
-      run_drive_evaluation(maps, ring, options, [&](int done, int total) {
-        if (!args.quiet) std::fprintf(stderr, "\r[eval --drive] %d/%d trials", done, total);
-        if (!args.quiet && done == total) std::fprintf(stderr, "\n");
-      });
+  const DriveEvalReport report = run_drive_evaluation(
+      maps, ring, options, progress_line("eval --drive", "trials", args.quiet));
   if (args.json) {
     print_json(options, report);
   } else {

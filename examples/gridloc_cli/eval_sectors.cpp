@@ -10,6 +10,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "progress.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -129,12 +130,11 @@ void run_sector_eval(const SectorEvalArgs& args) {
   std::vector<SectorEvalMap> maps;
   for (const auto& path : args.maps) maps.push_back({path, load_polygon_map(path, limits())});
   const SectorEvalOptions& options = args.options;
-  const SectorEvalReport report = run_sector_evaluation(maps, options, [&](int done, int total) {
-    if (args.quiet) return;
-    std::fprintf(stderr, "\r[eval] %d/%d poses (%zu polygon maps x %d trials, %zu estimators)",
-                 done, total, maps.size(), options.trials, options.estimators.size());
-    if (done == total) std::fprintf(stderr, "\n");
-  });
+  const std::string what = "poses (" + std::to_string(maps.size()) + " polygon maps x " +
+                           std::to_string(options.trials) + " trials, " +
+                           std::to_string(options.estimators.size()) + " estimators)";
+  const SectorEvalReport report =
+      run_sector_evaluation(maps, options, progress_line("eval", what, args.quiet));
   if (!args.trials_out.empty()) write_trials(args.trials_out, report, options);
   if (args.json) return print_json(maps, options, report);
   print_table_title(maps, options, report);

@@ -13,6 +13,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "progress.hpp"
 #include "team_io.hpp"
 
 namespace gridloc::cli {
@@ -108,8 +109,9 @@ void run_team_eval(const TeamEvalArgs& args, const TeamEvalInputs& inputs, std::
     simulators.push_back(std::make_unique<TeamSimulator>(world, sensing));
     pointers.push_back(simulators.back().get());
   }
-  const TeamProtocolReport report = run_team_protocol(
-      pointers, protocol_options(args, inputs, sensing, seed), progress_line("eval team", quiet));
+  const TeamProtocolReport report =
+      run_team_protocol(pointers, protocol_options(args, inputs, sensing, seed),
+                        progress_line("eval team", "trials", quiet));
   if (json) {
     std::cout << report_json(inputs, report).dump(2) << "\n";
     return;

@@ -163,7 +163,34 @@ TEST_F(Cli, BadStrategyAndSubcommand) {
                    "fastest");
   const CliRun r = run_cli(dir, "teleport");
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err.rfind("gridloc: error:", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("gridloc: error: unknown command 'teleport'; the commands are: localize, "
+                        "simulate, demo,",
+                        0),
+            0u)
+      << r.err;
+  const CliRun none = run_cli(dir, "--max-file-mb 10");
+  EXPECT_EQ(none.status, 2);
+  EXPECT_NE(none.err.find("no command given; the commands are: localize,"), std::string::npos)
+      << none.err;
+  // A missing option of a command is still named as such.
+  const CliRun option = run_cli(dir, "simulate --pose 1,1,0");
+  EXPECT_NE(option.err.find("--map is required"), std::string::npos) << option.err;
+}
+
+// Progress on a pipe or a log file: whole lines, no carriage returns (those are for a
+// terminal only).
+TEST_F(Cli, ProgressWithoutATerminalIsWholeLines) {
+  const CliRun r = run_cli(dir, "eval --trials 2 --maps " + quote(map));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[eval] 2/2 poses (1 maps x 2 trials"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, VersionIsPrinted) {
+  const CliRun r = run_cli(dir, "--version");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("gridloc ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find('.'), std::string::npos) << r.out;
 }
 
 TEST_F(Cli, BadSearchOptionsAreNamed) {
