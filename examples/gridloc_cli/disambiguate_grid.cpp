@@ -11,6 +11,7 @@
 #include "gridloc/sensors/readings_io.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -43,9 +44,12 @@ void check_inputs(const DisambiguateArgs& args) {
 Observation sensed_at_start(const DisambiguateArgs& args) {
   Observation observation;
   if (!args.scan.empty()) {
-    observation.scan = load_scan_csv(args.scan, args.max_range, limits());
+    observation.scan = load_input(args.scan, [&](const std::string& path) {
+      return load_scan_csv(path, args.max_range, limits());
+    });
   } else {
-    observation.ranges = load_readings(args.readings, limits());
+    observation.ranges = load_input(
+        args.readings, [](const std::string& path) { return load_readings(path, limits()); });
   }
   return observation;
 }

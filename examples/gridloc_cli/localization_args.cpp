@@ -7,6 +7,7 @@
 #include "gridloc/sensors/echo_filter.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -56,8 +57,10 @@ void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
       ->required();
   octomap.add_to(cmd);
   cmd->add_option("--ring", ring, "sonar ring YAML")->capture_default_str();
-  cmd->add_option("--readings", readings, "sonar readings JSON {\"ranges_m\": [...]}");
-  cmd->add_option("--scan", scan, "laser/IR scan CSV: angle_rad,range_m per line");
+  cmd->add_option("--readings", readings,
+                  "sonar readings JSON {\"ranges_m\": [...]} (- reads standard input)");
+  cmd->add_option("--scan", scan,
+                  "laser/IR scan CSV: angle_rad,range_m per line (- reads standard input)");
   cmd->add_option("--max-range", max_range, "scan max range (m); longer ranges are no return")
       ->capture_default_str();
   cmd->add_option("--prior", prior, "prior pose x,y,theta (m, m, rad)");
@@ -94,11 +97,14 @@ Localization prepare_localization(const LocalizationArgs& args) {
   Localization localization;
   std::vector<std::vector<double>> firings;
   if (args.scan.empty()) {
-    firings = load_firings(args.readings, limits());
+    firings = load_input(args.readings,
+                         [](const std::string& path) { return load_firings(path, limits()); });
     localization.firings = static_cast<int>(firings.size());
     localization.observation.ranges = firings.front();
   } else {
-    localization.observation.scan = load_scan_csv(args.scan, args.max_range, limits());
+    localization.observation.scan = load_input(args.scan, [&](const std::string& path) {
+      return load_scan_csv(path, args.max_range, limits());
+    });
   }
   const auto t0 = clock::now();
   OccupancyMap map = load_map(args.map, args.octomap.slice);

@@ -120,6 +120,25 @@ TEST_F(Cli, SimulateAScanThenLocalizeIt) {
   EXPECT_NE(bad.err.find("--beams must lie in [1, 100000], got 0"), std::string::npos) << bad.err;
 }
 
+// `-` reads the readings or the scan from standard input; its errors name standard input.
+TEST_F(Cli, ReadingsAndScansFromStandardInput) {
+  const std::string readings = dir.file("r.json"), scan = dir.file("s.csv");
+  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1,1,0 --out " + quote(readings))
+                .status,
+            0);
+  const CliRun from_file = run_cli(dir, "localize --map " + quote(map) + " --readings " +
+                                            quote(readings) + " --prior 1.2,0.9,0.2");
+  const CliRun piped = run_cli(dir, "localize --map " + quote(map) +
+                                        " --readings - --prior 1.2,0.9,0.2 < " + quote(readings));
+  ASSERT_EQ(piped.status, 0) << piped.err;
+  EXPECT_EQ(nlohmann::json::parse(piped.out).at("pose"),
+            nlohmann::json::parse(from_file.out).at("pose"));
+  dir.write("s.csv", "0,1\nnot,a number\n");
+  expect_cli_error(
+      run_cli(dir, "localize --map " + quote(map) + " --scan - --prior 1,1,0 < " + quote(scan)),
+      {"standard input:2:"});
+}
+
 TEST_F(Cli, MissingMapFile) {
   const std::string missing = dir.file("no_such_map.yaml");
   const std::string readings =
@@ -683,6 +702,18 @@ TEST_F(Cli, SectorsOfARectangle) {
   EXPECT_NE(l[2].find("mMmMmMmM"), std::string::npos) << l[2];
   EXPECT_NE(l[2].find("24.00"), std::string::npos) << l[2];
   EXPECT_NE(l[3].find("1 sector, 0 ambiguous"), std::string::npos) << l[3];
+}
+
+// The bundled bare L prints the table engine/doc/sectors.md shows.
+TEST_F(Cli, SectorsOfTheBundledBareLAreTheDocsTable) {
+  const CliRun r =
+      run_cli(dir, "sectors --polygons " + quote(test::maps_dir() + "/polygons/l_bare.yaml"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* row : {"   1  mMmMmMmMmM      9.00  (1.48, 1.48)", "   2  mMmDcMmMmM      4.49",
+                          "   3  mMmDcmMmM       7.51", "   4  mMmMmMmMcD      3.38",
+                          "   5  mMmMmMmcD       5.62", "5 sectors, 0 ambiguous"}) {
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+  }
 }
 
 TEST_F(Cli, SectorsMatchComputeSectors) {
