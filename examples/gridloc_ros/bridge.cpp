@@ -48,10 +48,35 @@ gridloc::LocalizerOptions localizer_options(const BridgeOptions& options, double
   return localizer;
 }
 
+/// A ring of the sonars tf placed: each mount as gridloc's polar position and cone heading.
+gridloc::SonarRing ring_of(const std::vector<SonarMount>& sonars) {
+  gridloc::SonarRing ring;
+  ring.name = "from tf";
+  for (const SonarMount& sonar : sonars) {
+    gridloc::SonarSpec spec;
+    spec.bearing = std::atan2(sonar.mount.y, sonar.mount.x);
+    spec.radius = std::hypot(sonar.mount.x, sonar.mount.y);
+    spec.heading = sonar.mount.theta;
+    spec.cone = sonar.field_of_view;
+    spec.min_range = sonar.min_range;
+    spec.max_range = sonar.max_range;
+    ring.sonars.push_back(spec);
+  }
+  gridloc::validate(ring);
+  return ring;
+}
+
+bool sonar_mode(const BridgeOptions& options) {
+  return !options.ring_file.empty() || !options.sonars.empty();
+}
+
 gridloc::Localizer make_localizer(gridloc::OccupancyMap map, const BridgeOptions& options) {
-  if (!options.ring_file.empty()) {
+  if (sonar_mode(options)) {
     const double resolution = options.resolution > 0.0 ? options.resolution : 0.1;
-    return gridloc::Localizer(std::move(map), gridloc::load_sonar_ring(options.ring_file),
+    gridloc::SonarRing ring = options.ring_file.empty()
+                                  ? ring_of(options.sonars)
+                                  : gridloc::load_sonar_ring(options.ring_file);
+    return gridloc::Localizer(std::move(map), std::move(ring),
                               localizer_options(options, resolution));
   }
   const double resolution = options.resolution > 0.0 ? options.resolution : map.geometry.resolution;
@@ -76,7 +101,7 @@ auto guarded(F&& what) {
 
 struct Bridge::Impl {
   Impl(gridloc::OccupancyMap map, const BridgeOptions& options)
-      : sonar(!options.ring_file.empty()), localizer(make_localizer(std::move(map), options)) {}
+      : sonar(sonar_mode(options)), localizer(make_localizer(std::move(map), options)) {}
   bool sonar;
   gridloc::Localizer localizer;
   bool answered = false;

@@ -27,12 +27,21 @@ struct GridMap {
   int free_threshold = 19;
 };
 
+/// One sonar as tf and its sensor_msgs/Range give it: the mount in the robot frame (the cone's
+/// axis along the mount's heading), the cone's full aperture and the ranges.
+struct SonarMount {
+  Pose mount;
+  double field_of_view = 0.20944;  ///< rad
+  double min_range = 0.15, max_range = 6.0;
+};
+
 struct BridgeOptions {
-  std::string map_file;           ///< a map_server YAML (used when no GridMap is given)
-  std::string ring_file;          ///< sonar mode: the ring (gridloc YAML), sonars in frame order
-  double laser_max_range = 20.0;  ///< laser mode: returns at or beyond are no return
-  Pose laser_mount;               ///< laser mode: the laser in the robot frame
-  double resolution = 0.0;        ///< the search's cell (m); 0: the map's (laser) or 0.1 (sonar)
+  std::string map_file;   ///< a map_server YAML (used when no GridMap is given)
+  std::string ring_file;  ///< sonar mode: the ring (gridloc YAML), sonars in frame order...
+  std::vector<SonarMount> sonars;  ///< ...or the sonars from tf (used when ring_file is empty)
+  double laser_max_range = 20.0;   ///< laser mode: returns at or beyond are no return
+  Pose laser_mount;                ///< laser mode: the laser in the robot frame
+  double resolution = 0.0;         ///< the search's cell (m); 0: the map's (laser) or 0.1 (sonar)
   /// The odometry model the places' covariances grow by (share of path, degrees per metre).
   double odometry_error_per_m = 0.05;
   double odometry_turn_deg_per_m = 5.0;

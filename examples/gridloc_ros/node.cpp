@@ -23,9 +23,11 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -64,7 +66,7 @@ class Node {
     initial_pose_sub_ = nh_.subscribe("initialpose", 2, &Node::on_initial_pose, this);
     global_srv_ = nh_.advertiseService("global_localization", &Node::on_global, this);
     localize_srv_ = private_nh_.advertiseService("localize", &Node::on_localize, this);
-    if (!options_.ring_file.empty()) {
+    if (!options_.ring_file.empty() || !sonar_frames_.empty()) {
       sonar_sub_ = nh_.subscribe("sonar", 100, &Node::on_sonar, this);
     } else {
       scan_sub_ = nh_.subscribe("scan", 2, &Node::on_scan, this);
@@ -74,7 +76,8 @@ class Node {
       if (publish_tf_ && have_map_to_odom_) publish_tf(ros::Time::now() + ros::Duration(0.1));
     });
     if (!options_.map_file.empty()) {
-      build(GridMap{});
+      have_map_ = true;
+      try_build();
     } else {
       map_sub_ = nh_.subscribe("map", 1, &Node::on_map, this);
     }
@@ -91,10 +94,24 @@ class Node {
     private_nh_.param("odometry_turn_deg_per_m", options_.odometry_turn_deg_per_m,
                       options_.odometry_turn_deg_per_m);
     private_nh_.param<std::string>("sonar_frame_prefix", sonar_prefix_, "sonar_");
+    private_nh_.param("sonar_frames", sonar_frames_, std::vector<std::string>{});
+    if (!options_.ring_file.empty()) sonar_frames_.clear();  // the ring file wins
+    mounts_.resize(sonar_frames_.size());
     private_nh_.param<std::string>("global_frame", global_frame_, "map");
     private_nh_.param<std::string>("odom_frame", odom_frame_, "odom");
     private_nh_.param<std::string>("base_frame", base_frame_, "base_link");
     private_nh_.param("publish_tf", publish_tf_, true);
+  }
+
+  /// Builds the localizer once the map (and, for sonars from tf, every mount) is known.
+  void try_build() {
+    if (!have_map_) return;
+    options_.sonars.clear();
+    for (const auto& mount : mounts_) {
+      if (!mount) return;
+      options_.sonars.push_back(*mount);
+    }
+    build(map_);
   }
 
   /// (Re)builds the localizer on a map; a prior given before applies now.
@@ -119,7 +136,9 @@ class Node {
     map.resolution = msg->info.resolution;
     map.origin = pose_of(msg->info.origin);
     map.data.assign(msg->data.begin(), msg->data.end());
-    build(map);
+    map_ = std::move(map);
+    have_map_ = true;
+    try_build();
   }
 
   void apply_prior(const geometry_msgs::PoseWithCovarianceStamped& msg) {
@@ -176,6 +195,10 @@ class Node {
 
   /// The sonar index a Range's frame names (ring order), or -1.
   int sonar_index(const std::string& frame) const {
+    if (!sonar_frames_.empty()) {
+      const auto at = std::find(sonar_frames_.begin(), sonar_frames_.end(), frame);
+      return at == sonar_frames_.end() ? -1 : static_cast<int>(at - sonar_frames_.begin());
+    }
     if (frame.compare(0, sonar_prefix_.size(), sonar_prefix_) != 0) return -1;
     try {
       const int i = std::stoi(frame.substr(sonar_prefix_.size()));
@@ -192,13 +215,35 @@ class Node {
     return !readings_.empty();
   }
 
+  /// A sonar's mount from tf (base -> its frame) and its cone and ranges from its Range.
+  void learn_mount(int i, const sensor_msgs::Range& msg) {
+    try {
+      const geometry_msgs::TransformStamped t =
+          buffer_.lookupTransform(base_frame_, msg.header.frame_id, ros::Time(0));
+      SonarMount mount;
+      mount.mount = {t.transform.translation.x, t.transform.translation.y,
+                     tf2::getYaw(t.transform.rotation)};
+      mount.field_of_view = msg.field_of_view;
+      mount.min_range = msg.min_range;
+      mount.max_range = msg.max_range;
+      mounts_[static_cast<std::size_t>(i)] = mount;
+      try_build();
+    } catch (const tf2::TransformException& e) {
+      ROS_WARN_THROTTLE(10.0, "gridloc: no mount for sonar '%s' yet (%s)",
+                        msg.header.frame_id.c_str(), e.what());
+    }
+  }
+
   void on_sonar(const sensor_msgs::Range::ConstPtr& msg) {
+    const int known = sonar_index(msg->header.frame_id);
+    if (known >= 0 && !sonar_frames_.empty() && !mounts_[static_cast<std::size_t>(known)]) {
+      learn_mount(known, *msg);
+    }
     if (!bridge_) return;
     const int i = sonar_index(msg->header.frame_id);
     if (i < 0) {
-      ROS_WARN_THROTTLE(10.0, "gridloc: Range in frame '%s' is not a sonar of the ring (%s0..%d)",
-                        msg->header.frame_id.c_str(), sonar_prefix_.c_str(),
-                        static_cast<int>(readings_.size()) - 1);
+      ROS_WARN_THROTTLE(10.0, "gridloc: Range in frame '%s' is not one of the ring's sonars",
+                        msg->header.frame_id.c_str());
       return;
     }
     readings_[i] = msg->range;
@@ -334,6 +379,10 @@ class Node {
   tf2_ros::TransformBroadcaster broadcaster_;
   BridgeOptions options_;
   std::string sonar_prefix_, global_frame_, odom_frame_, base_frame_;
+  std::vector<std::string> sonar_frames_;  ///< sonars from tf, in ring order
+  std::vector<std::optional<SonarMount>> mounts_;
+  GridMap map_;
+  bool have_map_ = false;
   bool publish_tf_ = true;
   std::unique_ptr<Bridge> bridge_;
   std::unique_ptr<geometry_msgs::PoseWithCovarianceStamped> pending_prior_;

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """End-to-end test of gridloc_ros (issue 18; ctest label `ros`).
 
-Starts roscore on a free loopback port, then the node twice: with the bundled wheelchair's
-sonar ring (a map on `map`, an `initialpose`, one firing as 14 `sensor_msgs/Range`, then
-`~localize`) and with a laser (`global_localization`, one `sensor_msgs/LaserScan`, then
-`~localize`). Each answer must be `localized` within 10 cm and 7 degrees of the truth, and the
+Starts roscore on a free loopback port, then the node three times: with the bundled
+wheelchair's sonar ring from its file (a map on `map`, an `initialpose`, one firing as 14
+`sensor_msgs/Range`, then `~localize`), the same ring from tf (`~sonar_frames`, the mounts
+base_link -> sonar_i on /tf_static), and with a laser (`global_localization`, one
+`sensor_msgs/LaserScan`, then `~localize`). Each answer must be `localized` within 10 cm and 7 degrees of the truth, and the
 map -> odom transform must be on tf. Readings come from `gridloc simulate`. Everything started
 is stopped. Exits 77 (ctest: skipped) when ROS 1 is not installed.
 """
@@ -160,13 +161,50 @@ def simulate(gridloc, maps, extra):
     return subprocess.run(command, check=True, capture_output=True, text=True).stdout
 
 
-def sonar_case(run, args, publishers, tf_seen):
-    node = run.start([args.node, "__name:=gridloc_sonar",
-                      "_ring_file:=" + os.path.join(args.maps, "sensors", "wheelchair_14.yaml")],
-                     "node_sonar")
-    localize = rospy.ServiceProxy("/gridloc_sonar/localize", Trigger)
-    rospy.wait_for_service("/gridloc_sonar/localize", timeout=30)
-    localize_until_ready(localize, {"no map yet"})
+def ring_mounts(maps):
+    """The bundled ring's sonars as (x, y, yaw) mounts in the robot frame."""
+    import yaml
+    ring = yaml.safe_load(open(os.path.join(maps, "sensors", "wheelchair_14.yaml")))
+    return [(s["radius_m"] * math.cos(math.radians(s["bearing_deg"])),
+             s["radius_m"] * math.sin(math.radians(s["bearing_deg"])),
+             math.radians(s["heading_deg"])) for s in ring["sonars"]]
+
+
+def static_transforms(maps):
+    """odom -> base_link (the robot at the odometry origin) and base_link -> sonar_i."""
+    transforms = []
+    odom = TransformStamped()
+    odom.header.frame_id, odom.child_frame_id = "odom", "base_link"
+    odom.header.stamp = rospy.Time.now()
+    odom.transform.rotation.w = 1.0
+    transforms.append(odom)
+    for i, (x, y, yaw) in enumerate(ring_mounts(maps)):
+        t = TransformStamped()
+        t.header.frame_id, t.child_frame_id = "base_link", f"sonar_{i}"
+        t.header.stamp = rospy.Time.now()
+        t.transform.translation.x, t.transform.translation.y = x, y
+        t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+        transforms.append(t)
+    return TFMessage(transforms)
+
+
+def fire(publishers, ranges):
+    for i, r in enumerate(ranges):
+        msg = Range()
+        msg.header.frame_id = f"sonar_{i}"
+        msg.header.stamp = rospy.Time.now()
+        msg.radiation_type = Range.ULTRASOUND
+        msg.field_of_view, msg.min_range, msg.max_range = math.radians(12), 0.15, 6.0
+        msg.range = r
+        publishers["sonar"].publish(msg)
+
+
+def sonar_case(run, args, publishers, tf_seen, name, parameters, firings):
+    """The node `name` with a sonar ring; `firings` firings are published after the prior."""
+    tf_seen.clear()
+    node = run.start([args.node, "__name:=" + name] + parameters, "node_" + name)
+    localize = rospy.ServiceProxy(f"/{name}/localize", Trigger)
+    rospy.wait_for_service(f"/{name}/localize", timeout=30)
     prior = PoseWithCovarianceStamped()
     prior.header.frame_id = "map"
     prior.header.stamp = rospy.Time.now()
@@ -180,16 +218,11 @@ def sonar_case(run, args, publishers, tf_seen):
     ranges = json.loads(simulate(args.gridloc, args.maps, ["--realistic", "--seed", "3"]))["ranges_m"]
     wait_for("sonar's subscriber", lambda: publishers["sonar"].get_num_connections() > 0)
     time.sleep(0.5)  # the prior reaches the node before the firing
-    for i, r in enumerate(ranges):
-        msg = Range()
-        msg.header.frame_id = f"sonar_{i}"
-        msg.header.stamp = rospy.Time.now()
-        msg.radiation_type = Range.ULTRASOUND
-        msg.field_of_view, msg.min_range, msg.max_range = math.radians(12), 0.15, 6.0
-        msg.range = r
-        publishers["sonar"].publish(msg)
-    localize_until_ready(localize, {"no complete sonar firing yet"})
-    check_answer(localize(), "sonar ring, initialpose, ~localize")
+    for _ in range(firings):
+        fire(publishers, ranges)
+        time.sleep(0.3)
+    localize_until_ready(localize, {"no map yet", "no complete sonar firing yet"})
+    check_answer(localize(), f"sonar ring ({name}), initialpose, ~localize")
     wait_for("map -> odom on tf", lambda: tf_seen.get("odom") is not None)
     run.stop(node)
 
@@ -250,12 +283,13 @@ def main():
                 "scan": rospy.Publisher("/scan", LaserScan, queue_size=1),
             }
             publishers["map"].publish(read_map(os.path.join(args.maps, "room_furnished.yaml")))
-            odom = TransformStamped()  # the robot stands at the odometry origin
-            odom.header.frame_id, odom.child_frame_id = "odom", "base_link"
-            odom.header.stamp = rospy.Time.now()
-            odom.transform.rotation.w = 1.0
-            publishers["tf_static"].publish(TFMessage([odom]))
-            sonar_case(run, args, publishers, tf_seen)
+            publishers["tf_static"].publish(static_transforms(args.maps))
+            ring_file = os.path.join(args.maps, "sensors", "wheelchair_14.yaml")
+            sonar_case(run, args, publishers, tf_seen, "gridloc_sonar", ["_ring_file:=" + ring_file], 1)
+            # The same ring from tf: the mounts base_link -> sonar_i and each Range's cone; the
+            # first firing teaches the mounts, the second is localized.
+            rospy.set_param("/gridloc_tf/sonar_frames", [f"sonar_{i}" for i in range(14)])
+            sonar_case(run, args, publishers, tf_seen, "gridloc_tf", [], 2)
             laser_case(run, args, publishers, tf_seen)
         except Exception:
             for _, name in run.processes:
