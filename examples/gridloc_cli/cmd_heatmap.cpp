@@ -179,8 +179,13 @@ void run(const HeatmapArgs& args) {
   const Estimate estimate = estimator.estimate(observation, window);
   const ScoreVolume volume = estimator.score_volume(observation, window);
   const fs::path dir = output_folder(args.out);
-  const HeatmapMarks marks{estimate.pose, estimate.alternatives, truth,
-                           caption(args.inputs, observation, window, volume, estimate)};
+  const HeatmapMarks marks{estimate.pose,
+                           estimate.alternatives,
+                           truth,
+                           caption(args.inputs, observation, window, volume, estimate),
+                           to_string(estimate.verdict),
+                           estimate.confidence,
+                           estimate.covariance};
   write_heatmap_files(dir, estimator, volume, window,
                       local_at_estimate(estimator, observation, volume, estimate.pose), marks);
 

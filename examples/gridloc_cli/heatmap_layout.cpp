@@ -1,9 +1,12 @@
 #include "heatmap_layout.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 namespace gridloc::cli::layout {
@@ -71,13 +74,30 @@ void title(cv::Mat& img, const std::string& line1, const std::string& caption) {
 
 std::vector<plot::LegendItem> pose_legend(const HeatmapMarks& marks) {
   std::vector<plot::LegendItem> items;
-  items.push_back({[](cv::Mat& m, const cv::Point2d& p) { plot::estimate_marker(m, p, 0.0); },
-                   "estimate " + pose_text(marks.estimate)});
+  std::string estimate = "estimate " + pose_text(marks.estimate);
+  if (!marks.verdict.empty()) {
+    estimate += ": " + marks.verdict + ", confidence " + plot::fixed(marks.confidence, 2);
+  }
+  items.push_back(
+      {[](cv::Mat& m, const cv::Point2d& p) { plot::estimate_marker(m, p, 0.0); }, estimate});
   if (marks.truth) {
     items.push_back({[](cv::Mat& m, const cv::Point2d& p) { plot::truth_marker(m, p, 0.0); },
                      "truth " + pose_text(*marks.truth)});
   }
   return items;
+}
+
+std::vector<plot::LegendItem> map_legend() {
+  const auto swatch = [](double level) {
+    return [level](cv::Mat& m, const cv::Point2d& p) {
+      const cv::Rect r(static_cast<int>(p.x) + 2, static_cast<int>(p.y) - 7, 24, 14);
+      cv::rectangle(m, r, cv::Scalar(level, level, level), cv::FILLED);
+      cv::rectangle(m, r, plot::kSwatchEdge, 1);
+    };
+  };
+  return {{swatch(kFreeGrey), "map free"},
+          {swatch(kOccupiedGrey), "map occupied"},
+          {swatch(kUnknownGrey), "map unknown, or outside it"}};
 }
 
 cv::Mat legend_and_crop(cv::Mat& img, const std::vector<plot::LegendItem>& items,
@@ -94,6 +114,31 @@ void draw_hypotheses(cv::Mat& img, const plot::View& view, const GridGeometry& g
     const Pose2 p = grid.to_grid_frame(marks.hypotheses[k].pose);
     plot::hypothesis_marker(img, view.px(p.x, p.y), p.theta, static_cast<int>(k) + 1);
   }
+}
+
+void draw_covariance(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
+                     const HeatmapMarks& marks) {
+  // The x, y block in the grid frame: rotated by the map's yaw.
+  const double c = std::cos(grid.yaw), s = std::sin(grid.yaw);
+  Eigen::Matrix2d turn;
+  turn << c, s, -s, c;
+  const Eigen::Matrix2d xy = turn * marks.covariance.topLeftCorner<2, 2>() * turn.transpose();
+  if (!(xy.trace() > 0.0) || !xy.allFinite()) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(xy);
+  constexpr double kChi2_95 = 5.991;  // 95 % of a 2-D Gaussian lies within this squared radius
+  const Eigen::Vector2d radii =
+      (kChi2_95 * axes.eigenvalues().cwiseMax(0.0)).cwiseSqrt() * view.scale;
+  const Eigen::Vector2d major = axes.eigenvectors().col(1);
+  // Pixel rows grow downwards: the angle on the canvas is the grid angle negated.
+  const double angle_deg = -std::atan2(major.y(), major.x()) * 180.0 / std::numbers::pi;
+  const Pose2 e = grid.to_grid_frame(marks.estimate);
+  const cv::Size2f size(static_cast<float>(2.0 * std::max(radii(1), 1.0)),
+                        static_cast<float>(2.0 * std::max(radii(0), 1.0)));
+  const cv::Point2d centre = view.px(e.x, e.y);
+  cv::ellipse(img, cv::RotatedRect(cv::Point2f(centre), size, static_cast<float>(angle_deg)),
+              plot::kWhite, 3, cv::LINE_AA);
+  cv::ellipse(img, cv::RotatedRect(cv::Point2f(centre), size, static_cast<float>(angle_deg)),
+              plot::kEstimate, 1, cv::LINE_AA);
 }
 
 void draw_estimate_and_truth(cv::Mat& img, const plot::View& view, const GridGeometry& grid,

@@ -48,6 +48,13 @@ cv::Mat legend_and_crop(cv::Mat& img, const std::vector<plot::LegendItem>& items
 void draw_hypotheses(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                      const HeatmapMarks& marks);
 
+/// The map's cell greys (free, occupied, unknown or outside the map) as legend items.
+std::vector<plot::LegendItem> map_legend();
+
+/// The estimate's 95 % covariance ellipse in x, y (nothing for a zero covariance).
+void draw_covariance(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
+                     const HeatmapMarks& marks);
+
 /// The truth (when known), then the estimate over it.
 void draw_estimate_and_truth(cv::Mat& img, const plot::View& view, const GridGeometry& grid,
                              const HeatmapMarks& marks);

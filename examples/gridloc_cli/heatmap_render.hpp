@@ -3,6 +3,7 @@
 // map, the score against heading, the local grid on the global grid. OpenCV stays in the
 // command-line tool; the engine only hands over a ScoreVolume. Images are drawn in the grid
 // frame (x along columns, y along rows): the world frame when the map's yaw is 0.
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>
@@ -18,6 +19,11 @@ struct HeatmapMarks {
   std::vector<Hypothesis> hypotheses;  ///< distinct peaks, best first (1 = the lattice winner)
   std::optional<Pose2> truth;          ///< when known
   std::string caption;                 ///< under the title, '\n' between lines: map, window
+  std::string verdict;                 ///< the estimate's verdict, named in the legend...
+  double confidence = 0.0;             ///< ...with its confidence
+  /// The estimate's covariance (world frame, x y theta); its x, y part is drawn as the 95 %
+  /// ellipse on the x, y images (nothing when zero).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 /// The score over x, y at the best heading (`max_over_headings` false) or its maximum over

@@ -14,6 +14,7 @@ namespace {
 
 using layout::blend;
 using layout::canvas;
+using layout::draw_covariance;
 using layout::draw_estimate_and_truth;
 using layout::draw_hypotheses;
 using layout::draw_scale_and_axes;
@@ -149,6 +150,11 @@ std::vector<plot::LegendItem> score_xy_legend(const HeatmapMarks& marks) {
                    },
                    "hypotheses, best first"});
   items.push_back({[](cv::Mat& m, const cv::Point2d& p) {
+                     cv::ellipse(m, cv::RotatedRect(cv::Point2f(p), cv::Size2f(22, 10), 0.0f),
+                                 plot::kEstimate, 1, cv::LINE_AA);
+                   },
+                   "covariance, 95 % ellipse"});
+  items.push_back({[](cv::Mat& m, const cv::Point2d& p) {
                      const cv::Point2d d(10.0, 6.0);
                      cv::rectangle(m, plot::sub(p - d), plot::sub(p + d), cv::Scalar(90, 90, 90),
                                    cv::FILLED, cv::LINE_AA, plot::kShift);
@@ -156,6 +162,7 @@ std::vector<plot::LegendItem> score_xy_legend(const HeatmapMarks& marks) {
                                    cv::LINE_AA, plot::kShift);
                    },
                    "search window"});
+  for (plot::LegendItem& item : layout::map_legend()) items.push_back(std::move(item));
   return items;
 }
 
@@ -171,6 +178,7 @@ cv::Mat render_score_xy(const ScoreVolume& volume, const OccupancyMap& map,
   paint_scores_on_map(img, view, map, volume, slice, lut);
   draw_window(img, view, window);
   draw_hypotheses(img, view, volume.geometry, marks);
+  draw_covariance(img, view, volume.geometry, marks);
   draw_estimate_and_truth(img, view, volume.geometry, marks);
   draw_scale_and_axes(img, view, volume.geometry);
   const cv::Rect pr = view.rect();

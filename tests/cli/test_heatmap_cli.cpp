@@ -152,6 +152,39 @@ TEST_F(HeatmapCli, SonarOnRoomL) {
       << r.out;
 }
 
+/// Pixels of the estimate's red (the marker, and the covariance ellipse when drawn).
+int red_pixels(const cv::Mat& img) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r) {
+    for (int c = 0; c < img.cols; ++c) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(r, c);
+      n += p[2] > 180 && p[1] < 90 && p[0] < 90;
+    }
+  }
+  return n;
+}
+
+// The x, y images draw the estimate's 95 % covariance ellipse: a covariance turned off
+// (--covariance-cells 0) draws none, so far fewer red pixels.
+TEST_F(HeatmapCli, TheCovarianceEllipseIsDrawn) {
+  const std::string map = test::map_path("room_l");
+  const std::string readings = dir.file("readings.json");
+  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1.65,1.65,0.3 --out " +
+                             quote(readings))
+                .status,
+            0);
+  int red[2] = {0, 0};
+  for (const int cells : {3, 0}) {
+    const std::string out = dir.file("heat" + std::to_string(cells));
+    const CliRun r = run_cli(dir, "heatmap --map " + quote(map) + " --readings " + quote(readings) +
+                                      " --prior 1.9,1.4,0.6 --covariance-cells " +
+                                      std::to_string(cells) + " --out " + quote(out));
+    ASSERT_EQ(r.status, 0) << r.err;
+    red[cells == 0] = red_pixels(cv::imread(out + "/score_xy_best_theta.png", cv::IMREAD_COLOR));
+  }
+  EXPECT_GT(red[0], red[1] + 100) << red[0] << " vs " << red[1];
+}
+
 TEST_F(HeatmapCli, ScanOnRoomRect) {
   // 72 beams from (3, 2) in room_rect's own frame (6 x 4.5 m inside, corner at world
   // (0.15, 0.15)), walls only: the desk and cupboard make a few ranges wrong, as in life.
