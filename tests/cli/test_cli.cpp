@@ -2,6 +2,7 @@
 // localize round trip, eval JSON, and the one-line error contract (stderr, exit code 2).
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -203,6 +204,38 @@ TEST_F(Cli, ProgressWithoutATerminalIsWholeLines) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("[eval] 2/2 poses (1 maps x 2 trials"), std::string::npos) << r.err;
+}
+
+// Every option each command's --help lists is documented: in the README, the CLI
+// reference, the maps' README or a family's doc page.
+TEST_F(Cli, EveryHelpOptionIsDocumented) {
+  const std::string root = test::maps_dir() + "/..";
+  std::string docs = read_file(root + "/README.md") +
+                     read_file(root + "/examples/gridloc_cli/README.md") +
+                     read_file(root + "/maps/README.md");
+  for (const auto& page : std::filesystem::directory_iterator(root + "/engine/doc")) {
+    docs += read_file(page.path().string());
+  }
+  for (const char* command :
+       {"localize", "simulate", "demo", "eval", "relations", "map-from-log", "hallway", "heatmap",
+        "sectors", "disambiguate", "team", "track", "merge"}) {
+    const CliRun help = run_cli(dir, std::string(command) + " --help");
+    ASSERT_EQ(help.status, 0) << command;
+    for (const std::string& line : lines(help.out)) {
+      // An option's own line starts with two spaces and its name (descriptions wrap deeper).
+      if (line.rfind("  --", 0) != 0) continue;
+      const auto end = line.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-", 4);
+      const std::string option = line.substr(2, end - 2);
+      if (option == "--help") continue;
+      bool found = false;
+      for (auto at = docs.find(option); at != std::string::npos && !found;
+           at = docs.find(option, at + 1)) {
+        const char next = at + option.size() < docs.size() ? docs[at + option.size()] : ' ';
+        found = !(std::isalnum(static_cast<unsigned char>(next)) || next == '-');
+      }
+      EXPECT_TRUE(found) << command << " " << option << " is in --help but in no doc";
+    }
+  }
 }
 
 TEST_F(Cli, VersionIsPrinted) {
