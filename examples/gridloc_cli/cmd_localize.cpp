@@ -11,6 +11,7 @@
 #include "gridloc/engine/evaluation/sector_protocol.hpp"
 #include "gridloc/engine/icp/estimator.hpp"
 #include "gridloc/engine/sectors/estimator.hpp"
+#include "gridloc/engine/sectors/sector_file.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
@@ -23,6 +24,7 @@ namespace {
 struct LocalizeArgs {
   LocalizationArgs inputs;
   std::string estimator = "correlation";
+  std::string sectors;  ///< --sectors: sectors saved by `gridloc sectors --out`
   int repeat = 1;
   bool json = true;  // --json: JSON is the only output, the flag is accepted
 };
@@ -32,6 +34,9 @@ struct LocalizeArgs {
 EstimatorKind checked_kind(const LocalizeArgs& args) {
   if (args.repeat < 1) throw Error("--repeat must be >= 1");
   const EstimatorKind kind = parse_estimator_kind(args.estimator);
+  if (!args.sectors.empty() && !is_sector_estimator(kind)) {
+    throw Error("--sectors needs --estimator sectors or sectors+correlation");
+  }
   if (kind != EstimatorKind::Correlation && args.inputs.scan.empty()) {
     const bool sectors = is_sector_estimator(kind);
     throw Error("--estimator " + args.estimator + " needs a laser scan (--scan): " +
@@ -59,8 +64,16 @@ std::unique_ptr<Estimator> make_sector_estimator(
         args.inputs.map);
   }
   const PolygonMap polygons = load_polygon_map(args.inputs.map, limits());
-  if (kind == EstimatorKind::Sectors) return std::make_unique<SectorEstimator>(polygons);
-  auto sectors = std::make_shared<const SectorEstimator>(polygons);
+  SectorEstimatorOptions options;
+  options.sectors.limits = limits();
+  // Saved sectors (gridloc sectors --out) instead of computing them again.
+  SectorMap computed = args.sectors.empty()
+                           ? compute_sectors(polygons, options.sectors)
+                           : load_sectors(args.sectors, polygons, options.sectors, limits());
+  if (kind == EstimatorKind::Sectors) {
+    return std::make_unique<SectorEstimator>(std::move(computed), options);
+  }
+  auto sectors = std::make_shared<const SectorEstimator>(std::move(computed), options);
   // The local search on its own 2.5 cm lattice: the sector fix is already within
   // centimetres (SectorEvalOptions::refinement_resolution).
   CorrelationOptions fine = correlation->options();
@@ -160,6 +173,9 @@ void add_localize(CLI::App& app) {
          "sectors: global, a polygon --map and a 360 degree --scan) | sectors+correlation (the "
          "sector fix refined by a 2.5 cm local correlation search)")
       ->capture_default_str();
+  cmd->add_option("--sectors", args->sectors,
+                  "--estimator sectors or sectors+correlation: the sectors saved by `gridloc "
+                  "sectors --out DIR` (DIR/sector_map.json) instead of computing them");
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();
   // Issue 3's comparison scripts pass --json; localize prints JSON either way.

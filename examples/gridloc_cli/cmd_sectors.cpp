@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gridloc/engine/sectors/sector_file.hpp"
 #include "gridloc/engine/sectors/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
@@ -121,13 +122,15 @@ void run(const SectorsArgs& args) {
     const fs::path dir(args.out);
     const std::string json_path = (dir / "sectors.json").string();
     const std::string png_path = (dir / "sectors.png").string();
+    const std::string saved_path = (dir / "sector_map.json").string();
+    save_sectors(sectors, options, saved_path);  // for localize --sectors
     {
       std::ofstream file(json_path);
       file << out.dump(2) << "\n";
       if (!file) throw Error(json_path + ": cannot write the sectors");
     }
     plot::write_png(png_path, render_sectors(sectors, fs::path(args.polygons).filename().string()));
-    written = "wrote " + png_path + " and " + json_path + "\n";
+    written = "wrote " + png_path + ", " + json_path + " and " + saved_path + "\n";
   }
   // stdout stays pure JSON with --json; the files are where --out said.
   if (args.json) {
@@ -146,7 +149,8 @@ void add_sectors(CLI::App& app) {
       "sectors", "Visibility sectors of a polygon map and their labels (seed 000 Table 1)");
   cmd->add_option("--polygons", args->polygons, "polygon map (YAML with a 'boundary')")->required();
   cmd->add_option("--out", args->out,
-                  "folder for sectors.png and sectors.json (created if missing)");
+                  "folder for sectors.png, sectors.json and sector_map.json (the sectors, for "
+                  "localize --sectors; created if missing)");
   cmd->add_option("--cell", args->cell_m,
                   "sampling cell of the free space (m): smaller finds thinner sectors, slower")
       ->capture_default_str();

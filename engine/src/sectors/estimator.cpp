@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "gridloc/grids/error.hpp"
 
@@ -18,7 +19,10 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 SectorEstimator::SectorEstimator(const PolygonMap& map, SectorEstimatorOptions options)
-    : sectors_(compute_sectors(map, options.sectors)), options_(options) {
+    : SectorEstimator(compute_sectors(map, options.sectors), options) {}
+
+SectorEstimator::SectorEstimator(SectorMap sectors, SectorEstimatorOptions options)
+    : sectors_(std::move(sectors)), options_(options) {
   if (!(options_.residual_scale_m > 0.0) || !std::isfinite(options_.residual_scale_m)) {
     throw Error("SectorEstimatorOptions.residual_scale_m must be positive, got " +
                 std::to_string(options_.residual_scale_m));

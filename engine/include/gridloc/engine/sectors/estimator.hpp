@@ -37,6 +37,8 @@ class SectorEstimator final : public Estimator {
   /// Computes the sectors (the costly part: once per map); throws gridloc::Error for bad
   /// options.
   explicit SectorEstimator(const PolygonMap& map, SectorEstimatorOptions options = {});
+  /// On sectors computed before (load_sectors, sector_file.hpp) with options.sectors.
+  explicit SectorEstimator(SectorMap sectors, SectorEstimatorOptions options = {});
 
   /// Throws gridloc::Error for a sonar observation or a bad scan.
   Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
