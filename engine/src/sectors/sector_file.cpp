@@ -174,6 +174,9 @@ SectorMap load_sectors(const std::string& path, const PolygonMap& map, const Sec
     sectors.sector_of =
         read_cells(file.at("cell_sectors"), sectors.grid.size(), sectors.sectors.size());
     for (const Sector& s : sectors.sectors) {
+      if (s.features.size() != s.label.size()) {
+        throw Error("a sector's features do not match its label");
+      }
       for (int v : s.visible) {
         if (v < 0 || v >= static_cast<int>(sectors.vertices.size())) {
           throw Error("a sector sees a vertex the file does not list");
