@@ -5,6 +5,10 @@ include(CMakePackageConfigHelpers)
 install(TARGETS gridloc_grids gridloc_sensors gridloc_engine gridloc_evaluation EXPORT gridlocTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The OctoMap reader is a component of its own: find_package(gridloc COMPONENTS octomap).
+install(TARGETS gridloc_octomap EXPORT gridlocOctomapTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(module grids sensors engine)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
@@ -15,6 +19,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/maps/ DESTINATION ${CMAKE_INSTALL_DATADI
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.pgm" PATTERN "*.png")
 
 install(EXPORT gridlocTargets NAMESPACE gridloc:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gridloc)
+install(EXPORT gridlocOctomapTargets NAMESPACE gridloc::
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gridloc)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/gridlocConfig.cmake.in
   ${PROJECT_BINARY_DIR}/gridlocConfig.cmake
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gridloc)

@@ -58,6 +58,7 @@ set(expected
     ${LIBDIR}/cmake/gridloc/gridlocConfig.cmake
     ${LIBDIR}/cmake/gridloc/gridlocConfigVersion.cmake
     ${LIBDIR}/cmake/gridloc/gridlocTargets.cmake
+    ${LIBDIR}/cmake/gridloc/gridlocOctomapTargets.cmake
     ${LIBDIR}/cmake/gridloc/FindOpenCVModules.cmake
     ${DATADIR}/gridloc/maps/room_rect.yaml
     ${DATADIR}/gridloc/maps/room_rect.pgm
@@ -71,7 +72,7 @@ foreach(file IN LISTS expected)
     list(APPEND missing ${file})
   endif()
 endforeach()
-foreach(lib grids sensors engine evaluation)
+foreach(lib grids sensors engine evaluation octomap)
   file(GLOB found ${prefix}/${LIBDIR}/*gridloc_${lib}.*)
   if(NOT found)
     list(APPEND missing "${LIBDIR}/<lib>gridloc_${lib}.<ext>")
@@ -82,10 +83,13 @@ if(missing)
 endif()
 
 # 3. Configure the consumer against the prefix alone: the package registry and the system
-# paths' gridloc (if any) are off, and gridloc_DIR is checked below.
+# paths' gridloc (if any) are off, and gridloc_DIR is checked below. It is a sonar-only
+# user without OctoMap (find_package(octomap) disabled): gridloc must not need it unless the
+# octomap component is asked for.
 set(consumer_args -S ${SOURCE_DIR}/examples/navigation_stack -B ${consumer_build}
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=${CONFIG}
-    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON)
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_octomap=ON)
 if(GENERATOR)
   list(APPEND consumer_args -G ${GENERATOR})
 endif()
