@@ -122,6 +122,14 @@ nlohmann::json expect_heatmap_files(const std::string& out, const std::string& s
 class HeatmapCli : public ::testing::Test {
  protected:
   void SetUp() override { ::setenv("GRIDLOC_DATA_DIR", test::maps_dir().c_str(), 1); }
+  /// Noise-free readings of the bundled ring at (1.65, 1.65, 0.3) on `map`, in the folder.
+  std::string readings_on(const std::string& map) {
+    const std::string readings = dir.file("readings.json");
+    const CliRun sim = run_cli(
+        dir, "simulate --map " + quote(map) + " --pose 1.65,1.65,0.3 --out " + quote(readings));
+    EXPECT_EQ(sim.status, 0) << sim.err;
+    return readings;
+  }
   TempDir dir;
 };
 
@@ -168,11 +176,7 @@ int red_pixels(const cv::Mat& img) {
 // (--covariance-cells 0) draws none, so far fewer red pixels.
 TEST_F(HeatmapCli, TheCovarianceEllipseIsDrawn) {
   const std::string map = test::map_path("room_l");
-  const std::string readings = dir.file("readings.json");
-  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1.65,1.65,0.3 --out " +
-                             quote(readings))
-                .status,
-            0);
+  const std::string readings = readings_on(map);
   int red[2] = {0, 0};
   for (const int cells : {3, 0}) {
     const std::string out = dir.file("heat" + std::to_string(cells));
@@ -214,11 +218,7 @@ TEST_F(HeatmapCli, ScanOnRoomRect) {
 
 TEST_F(HeatmapCli, Errors) {
   const std::string map = test::map_path("room_l");
-  const std::string readings = dir.file("readings.json");
-  ASSERT_EQ(run_cli(dir, "simulate --map " + quote(map) + " --pose 1.65,1.65,0.3 --out " +
-                             quote(readings))
-                .status,
-            0);
+  const std::string readings = readings_on(map);
   const std::string base = "heatmap --map " + quote(map) + " --readings " + quote(readings);
   // --out without its value, and without --out at all.
   expect_cli_error(run_cli(dir, base + " --prior 1.9,1.4,0.6 --out"), {"--out"});
