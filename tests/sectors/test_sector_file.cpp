@@ -86,7 +86,9 @@ TEST(SectorFile, AnotherMapOtherOptionsOrABrokenFileAreRefused) {
       dir.write("broken.json", "{\"format\": \"gridloc visibility sectors 1\"");
   EXPECT_EQ(message(broken, map, options).rfind(broken + ": malformed sectors file", 0), 0u);
   EXPECT_EQ(message(dir.file("missing.json"), map, options),
-            dir.file("missing.json") + ": cannot open the sectors file");
+            dir.file("missing.json") + ": sectors file not found");
+  EXPECT_EQ(message(dir.path().string(), map, options),
+            dir.path().string() + ": is a directory, not a sectors file");
   ResourceLimits tiny;
   tiny.max_file_mb = 1e-4;
   EXPECT_THROW(load_sectors(path, map, options, tiny), Error);

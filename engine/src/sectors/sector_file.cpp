@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "gridloc/grids/error.hpp"
 
@@ -102,21 +101,6 @@ std::vector<int> read_cells(const json& runs, std::size_t size, std::size_t sect
   return cells;
 }
 
-/// The file's text, within the size limit.
-std::string read_text(const std::string& path, const ResourceLimits& limits) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(path + ": cannot open the sectors file");
-  const auto bytes = static_cast<double>(in.tellg());
-  if (bytes < 0.0 || bytes > limits.max_file_mb * 1024.0 * 1024.0) {
-    throw Error(path + ": the sectors file is over " + std::to_string(limits.max_file_mb) +
-                " MB (or unreadable)");
-  }
-  in.seekg(0);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// Throws unless the file's map and options are the ones asked for.
 void check_match(const json& file, const PolygonMap& map, const SectorOptions& options) {
   if (file.at("map") != map_json(map)) {
@@ -157,7 +141,7 @@ void save_sectors(const SectorMap& sectors, const SectorOptions& options, const 
 
 SectorMap load_sectors(const std::string& path, const PolygonMap& map, const SectorOptions& options,
                        const ResourceLimits& limits) {
-  const std::string text = read_text(path, limits);
+  const std::string text = read_input_file(path, "sectors file", limits);
   try {
     const json file = json::parse(text);
     if (file.at("format") != kFormat) throw Error("not a gridloc sectors file");

@@ -15,7 +15,8 @@ namespace gridloc {
 void save_sectors(const SectorMap& sectors, const SectorOptions& options, const std::string& path);
 
 /// Reads what save_sectors wrote, for `map` and `options`; throws gridloc::Error naming the
-/// file for a missing, oversized (limits.max_file_mb) or malformed file, sectors of another
+/// file for a missing file, a directory or device, a file over limits.max_file_mb, a malformed
+/// file, sectors of another
 /// polygon map, or sectors computed with another cell, label beam count or clearance.
 SectorMap load_sectors(const std::string& path, const PolygonMap& map, const SectorOptions& options,
                        const ResourceLimits& limits = {});
