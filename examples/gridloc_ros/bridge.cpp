@@ -106,6 +106,16 @@ struct Bridge::Impl {
   gridloc::Localizer localizer;
   bool answered = false;
 
+  /// Localizes `observation` (sonar ranges or a scan) and answers, timed.
+  template <class Observation>
+  Answer observe(double time_s, const Observation& observation) {
+    const auto start = std::chrono::steady_clock::now();
+    localizer.add_observation(time_s, observation);
+    return answer(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+  }
+
   Answer answer(double elapsed_ms) {
     answered = true;
     const gridloc::Estimate e = localizer.estimate();
@@ -168,13 +178,7 @@ void Bridge::reset() {
 }
 
 Answer Bridge::add_sonar(double time_s, const std::vector<double>& ranges) {
-  return guarded([&] {
-    const auto start = std::chrono::steady_clock::now();
-    impl_->localizer.add_observation(time_s, ranges);
-    return impl_->answer(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
-  });
+  return guarded([&] { return impl_->observe(time_s, ranges); });
 }
 
 Answer Bridge::add_scan(double time_s, double angle_min, double angle_increment, double range_max,
@@ -190,11 +194,7 @@ Answer Bridge::add_scan(double time_s, double angle_min, double angle_increment,
       scan.angles.push_back(angle_min + angle_increment * static_cast<double>(i));
       scan.ranges.push_back(std::min(r, range_max));
     }
-    const auto start = std::chrono::steady_clock::now();
-    impl_->localizer.add_observation(time_s, scan);
-    return impl_->answer(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    return impl_->observe(time_s, scan);
   });
 }
 

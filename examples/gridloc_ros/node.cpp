@@ -235,12 +235,11 @@ class Node {
   }
 
   void on_sonar(const sensor_msgs::Range::ConstPtr& msg) {
-    const int known = sonar_index(msg->header.frame_id);
-    if (known >= 0 && !sonar_frames_.empty() && !mounts_[static_cast<std::size_t>(known)]) {
-      learn_mount(known, *msg);
+    const int i = sonar_index(msg->header.frame_id);
+    if (i >= 0 && !sonar_frames_.empty() && !mounts_[static_cast<std::size_t>(i)]) {
+      learn_mount(i, *msg);
     }
     if (!bridge_) return;
-    const int i = sonar_index(msg->header.frame_id);
     if (i < 0) {
       ROS_WARN_THROTTLE(10.0, "gridloc: Range in frame '%s' is not one of the ring's sonars",
                         msg->header.frame_id.c_str());
