@@ -96,7 +96,8 @@ struct TrackTally {
   }
 };
 
-nlohmann::json step_json(const TrackStep& step, bool truth) {
+/// One JSON line of a scan; `truth` is the log's pose with --truth-from-log.
+nlohmann::json step_json(const TrackStep& step, const std::optional<Pose2>& truth) {
   const Estimate& e = step.estimate;
   const nlohmann::json estimate = cli::to_json(e);
   nlohmann::json search = nullptr;
@@ -119,6 +120,7 @@ nlohmann::json step_json(const TrackStep& step, bool truth) {
                          {"odometry", cli::to_json(step.odometry)},
                          {"timing_ms", step.timing_ms}};
   if (truth) {
+    line["truth"] = cli::to_json(*truth);
     line["error_m"] = step.error_m;
     line["error_deg"] = step.error_deg;
   }
@@ -298,7 +300,12 @@ void run(const TrackArgs& args) {
     tally.add(step, args.truth);
     if (!args.plot.empty()) steps.push_back(step);
     if (args.json) {
-      std::cout << step_json(step, args.truth).dump() << "\n" << std::flush;
+      std::cout << step_json(step, args.truth
+                                       ? std::optional<Pose2>(log.lasers[step.index].robot_pose)
+                                       : std::nullopt)
+                       .dump()
+                << "\n"
+                << std::flush;
       return;
     }
     progress(static_cast<int>(step.index + 1), static_cast<int>(log.lasers.size()));

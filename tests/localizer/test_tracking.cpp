@@ -140,7 +140,9 @@ TEST(Tracking, AScanFittingFarWorseThanUsualIsNotLocalizedUnderTheFitRule) {
       }
       localizer.add_observation(double(k), scan);
       const Estimate e = localizer.estimate();
-      if (k + 1 == hidden) ASSERT_EQ(e.verdict, Verdict::Localized) << "ratio " << ratio;
+      if (k + 1 == hidden) {
+        ASSERT_EQ(e.verdict, Verdict::Localized) << "ratio " << ratio;
+      }
       if (k == hidden) {
         EXPECT_EQ(e.verdict, ratio > 0.0 ? Verdict::NotLocalized : Verdict::Localized)
             << "ratio " << ratio;
