@@ -8,6 +8,7 @@
 #include <sstream>
 #include <utility>
 
+#include "gridloc/engine/localizer/place_prior.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/driver_readings.hpp"
 
@@ -63,6 +64,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.localized_sigma_rad, "must be finite and >= 0");
   require(options.miss_fit_ratio >= 0.0 && options.miss_fit_ratio <= 1.0, "miss_fit_ratio",
           options.miss_fit_ratio, "must lie in [0, 1]");
+  require(options.prior_fit_ratio >= 0.0 && options.prior_fit_ratio <= 1.0, "prior_fit_ratio",
+          options.prior_fit_ratio, "must lie in [0, 1]");
   require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
           "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
   require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
@@ -346,15 +349,16 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
   const Pose2 moved = relative_pose(next.set_odometry, taken_at);
   std::vector<TrackedHypothesis> followed;
   for (const TrackedHypothesis& hypothesis : next.set.hypotheses) {
-    std::vector<Pose2> look_alikes;
+    std::vector<LookAlike> look_alikes;
     std::optional<TrackedHypothesis> carried =
         follow_one(hypothesis, moved, next.travelled_m, observation, &look_alikes);
     if (!carried) continue;
     // A place carried so far that its window spans look-alikes splits into them: the weights,
-    // not this one scan, will say which it is.
-    for (const Pose2& pose : look_alikes) {
+    // not this one scan, will say which it is; the odometry's prior gives each its start.
+    for (const LookAlike& look_alike : look_alikes) {
       TrackedHypothesis split = *carried;
-      split.pose = pose;
+      split.pose = look_alike.pose;
+      split.log_weight += look_alike.log_prior;
       const double cell = coarse_->options().resolution;
       split.covariance = Eigen::Vector3d(cell * cell, cell * cell,
                                          options_.min_half_theta * options_.min_half_theta / 9.0)
@@ -373,7 +377,7 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
 std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothesis,
                                                        const Pose2& moved, double travelled_m,
                                                        const Observation& observation,
-                                                       std::vector<Pose2>* look_alikes) const {
+                                                       std::vector<LookAlike>* look_alikes) const {
   hypothesis.pose = compose(hypothesis.pose, moved);
   hypothesis.driven_m += travelled_m;
   if (!on_map(estimator_.map(), hypothesis.pose)) return std::nullopt;
@@ -389,13 +393,13 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
       std::min(covariance(2, 2) + theta * theta, std::numbers::pi * std::numbers::pi);
   const SearchWindow global = estimator_.global_window(observation);
   SearchWindow window = window_around(hypothesis, global);
-  Estimate e = search_window(observation, window, look_alikes);
+  Estimate e = search_window(observation, window, covariance, look_alikes);
   if (e.on_window_edge && hypothesis.confirmed) {  // the best may lie beyond (a slip): look
                                                    // once more, twice as wide
     window.half_xy =
         std::min(2.0 * window.half_xy, std::max(options_.max_half_xy_m, window.half_xy));
     window.half_theta = std::min(2.0 * window.half_theta, std::numbers::pi);
-    e = search_window(observation, window);
+    e = search_window(observation, window, covariance);
   }
   place(hypothesis, e, observation, global);
   hypothesis.score = e.score;
@@ -423,7 +427,11 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   // Where the odometry carried it, or within two cells: when that scores as well as the
   // window's winner, the scan does not move the place (along a corridor it cannot).
   const Estimate near = best_near(hypothesis.pose, observation, global);
-  const bool odometry_holds = near.score >= (1.0 - options_.odometry_score_slack) * e.score;
+  const PlacePrior prior = place_prior(hypothesis.pose, hypothesis.covariance, global.step_theta);
+  const bool fits_as_usual =
+      near.normalized_score >= options_.prior_fit_ratio * hypothesis.usual_fit;
+  const bool odometry_holds = near.score >= (1.0 - options_.odometry_score_slack) * e.score ||
+                              (fits_as_usual && posterior(near, prior) >= posterior(e, prior));
   const bool same =
       std::hypot(near.pose.x - e.pose.x, near.pose.y - e.pose.y) <=
           2.0 * estimator_.options().resolution &&
@@ -463,14 +471,15 @@ bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& plac
 }
 
 Estimate Localizer::search_window(const Observation& observation, const SearchWindow& window,
-                                  std::vector<Pose2>* look_alikes) const {
+                                  const Eigen::Matrix3d& covariance,
+                                  std::vector<LookAlike>* look_alikes) const {
   const double cell = coarse_ ? coarse_->options().resolution : 0.0;
   if (!coarse_ || window.half_xy <= 3.0 * cell || !coarse_contains(window.center)) {
     return estimator_.estimate(observation, window);
   }
   // A wide window: its best place on the coarse copy, then within two coarse cells of it on
   // the tracker's grids; and within two coarse cells of the centre (the coarse copy may
-  // blur a near place away). The better of the two.
+  // blur a near place away).
   SearchWindow wide = window;
   wide.step_xy = cell;
   wide.step_theta = std::max(window.step_theta, coarse_->global_window(observation).step_theta);
@@ -487,12 +496,26 @@ Estimate Localizer::search_window(const Observation& observation, const SearchWi
   if (!on_map(estimator_.map(), rough.pose)) return at_centre;  // the coarse copy's rim
   near.center = rough.pose;
   Estimate at_rough = estimator_.estimate(observation, near);
-  // The odometry's neighbourhood unless the far place is clearly better (a corridor turned
-  // round or shifted along reads nearly the same).
-  Estimate best =
-      at_rough.score > (1.0 + options_.far_place_margin) * at_centre.score ? at_rough : at_centre;
-  if (peaks > 1) *look_alikes = other_places(rough, best.pose);
+  // The far place must explain the scan better by more than the odometry's doubt of it and
+  // score clearly more (a corridor turned round or slid along reads nearly the same).
+  const PlacePrior prior = place_prior(window.center, covariance, window.step_theta);
+  const bool far_wins = at_rough.score > (1.0 + options_.far_place_margin) * at_centre.score &&
+                        posterior(at_rough, prior) > posterior(at_centre, prior);
+  Estimate best = far_wins ? at_rough : at_centre;
+  if (peaks > 1) *look_alikes = other_places(rough, best, prior);
   return best;
+}
+
+Localizer::PlacePrior Localizer::place_prior(const Pose2& carried,
+                                             const Eigen::Matrix3d& covariance,
+                                             double step_theta) const {
+  const double cell = estimator_.options().resolution;
+  return {carried, covariance, Eigen::Vector3d(cell * cell, cell * cell, step_theta * step_theta)};
+}
+
+double Localizer::posterior(const Estimate& e, const PlacePrior& prior) const {
+  return options_.weights.evidence_per_scan * e.normalized_score +
+         log_prior(e.pose, prior.carried, prior.covariance, prior.floor);
 }
 
 bool Localizer::coarse_contains(const Pose2& pose) const {
@@ -503,14 +526,19 @@ bool Localizer::coarse_contains(const Pose2& pose) const {
   return ix >= 0.0 && iy >= 0.0 && ix < grid.width && iy < grid.height;
 }
 
-std::vector<Pose2> Localizer::other_places(const Estimate& rough, const Pose2& chosen) const {
+std::vector<LookAlike> Localizer::other_places(const Estimate& rough, const Estimate& chosen,
+                                               const PlacePrior& prior) const {
   const HypothesisSetOptions& set = options_.hypothesis_set;
-  std::vector<Pose2> others;
+  const double chosen_prior = log_prior(chosen.pose, prior.carried, prior.covariance, prior.floor);
+  std::vector<LookAlike> others;
   for (const Hypothesis& peak : rough.alternatives) {
-    const bool apart = std::hypot(peak.pose.x - chosen.x, peak.pose.y - chosen.y) > set.merge_xy ||
-                       std::abs(normalize_angle(peak.pose.theta - chosen.theta)) > set.merge_theta;
+    const Pose2& pose = peak.pose;
+    const bool apart = std::hypot(pose.x - chosen.pose.x, pose.y - chosen.pose.y) > set.merge_xy ||
+                       std::abs(normalize_angle(pose.theta - chosen.pose.theta)) > set.merge_theta;
     const bool kept = apart && peak.score >= options_.split_ratio * rough.score;
-    if (kept && on_map(estimator_.map(), peak.pose)) others.push_back(peak.pose);
+    if (!kept || !on_map(estimator_.map(), pose)) continue;
+    others.push_back(
+        {pose, log_prior(pose, prior.carried, prior.covariance, prior.floor) - chosen_prior});
   }
   return others;
 }

@@ -18,6 +18,7 @@
 #include "gridloc/engine/localizer/hypothesis_set.hpp"
 #include "gridloc/engine/localizer/hypothesis_weights.hpp"
 #include "gridloc/engine/localizer/jump_gate.hpp"
+#include "gridloc/engine/localizer/place_prior.hpp"
 #include "gridloc/engine/localizer/sliced_search.hpp"
 #include "gridloc/sensors/drive_fusion.hpp"
 
@@ -63,6 +64,11 @@ struct LocalizerOptions {
   /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
   /// distance from its prior for the same reason.
   double odometry_score_slack = 0.02;
+  /// The odometry's place is also kept when the scan's evidence there plus the odometry's
+  /// prior (place_prior.hpp) beats the window's winner, as long as it fits at least this
+  /// share of the place's usual normalized score: a corridor slid along fits as well and lies
+  /// where the odometry did not go; after a slip the odometry's place fits far worse.
+  double prior_fit_ratio = 0.8;
   /// A window that moves a tracked place farther from where the odometry carried it than
   /// prior_sigmas of its grown covariance, and at least these, is not `localized` at that
   /// observation (a scan matched to the wrong place, or a slip: the place follows it, and the
@@ -203,7 +209,7 @@ class Localizer {
   /// the other places in it scoring split_ratio of its best (on the coarse copy).
   std::optional<TrackedHypothesis> follow_one(TrackedHypothesis hypothesis, const Pose2& moved,
                                               double travelled_m, const Observation& observation,
-                                              std::vector<Pose2>* look_alikes) const;
+                                              std::vector<LookAlike>* look_alikes) const;
   /// Starts a re-search when the track is lost (or ambiguous long enough), runs its next
   /// slices (all of them at the first observation) and, once it is done, lets its places
   /// join `tracked`. Returns the finished search's estimate.
@@ -226,11 +232,25 @@ class Localizer {
   /// The window's estimate; a window wider than three coarse cells is searched on the
   /// coarse copy first, then within two coarse cells of its best on the tracker's grids.
   Estimate search_window(const Observation& observation, const SearchWindow& window,
-                         std::vector<Pose2>* look_alikes = nullptr) const;
+                         const Eigen::Matrix3d& covariance,
+                         std::vector<LookAlike>* look_alikes = nullptr) const;
+  /// Where the odometry carried a place (a window's centre) and how unsure it is.
+  struct PlacePrior {
+    Pose2 carried;
+    Eigen::Matrix3d covariance;
+    Eigen::Vector3d floor;  ///< a cell and a heading step, added to the variances
+  };
+  PlacePrior place_prior(const Pose2& carried, const Eigen::Matrix3d& covariance,
+                         double step_theta) const;
+  /// The window's evidence (HypothesisWeightOptions::evidence_per_scan times its normalized
+  /// score) plus the log prior of its pose.
+  double posterior(const Estimate& e, const PlacePrior& prior) const;
   /// Whether a window centred at `pose` lies on the coarse copy's grid.
   bool coarse_contains(const Pose2& pose) const;
-  /// A coarse window's peaks apart from `chosen` and scoring split_ratio of its best.
-  std::vector<Pose2> other_places(const Estimate& rough, const Pose2& chosen) const;
+  /// A coarse window's peaks apart from `chosen` and scoring split_ratio of its best, each
+  /// with its log prior against the chosen place's.
+  std::vector<LookAlike> other_places(const Estimate& rough, const Estimate& chosen,
+                                      const PlacePrior& prior) const;
   /// The best pose within two cells and two heading steps of `pose`.
   Estimate best_near(const Pose2& pose, const Observation& observation,
                      const SearchWindow& global) const;
