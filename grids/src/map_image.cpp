@@ -19,11 +19,11 @@ void check_image_size(double width, double height, int channels, std::size_t fil
 
 }  // namespace
 
-cv::Mat read_map_image(const std::string& path, const ResourceLimits& limits) {
+Image read_map_image(const std::string& path, const ResourceLimits& limits) {
   const std::string bytes = read_input_file(path, "map image", limits);
   if (looks_like_png(bytes)) {
     const PngHeader header = read_png_header(bytes, path);
-    // OpenCV decodes every PNG to 1, 3 or 4 channels; 4 bounds them all.
+    // decode_png gives 1, 3 or 4 channels (as OpenCV did); 4 bounds them all.
     check_image_size(header.width, header.height, 4, bytes.size(), path, limits);
     return decode_png(bytes, header, path);
   }

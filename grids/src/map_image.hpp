@@ -1,9 +1,9 @@
 #pragma once
 // Reading a map_server map image within the resource limits (issue 14).
-#include <opencv2/core.hpp>
 #include <string>
 
 #include "gridloc/grids/limits.hpp"
+#include "image.hpp"
 
 namespace gridloc {
 
@@ -12,6 +12,6 @@ namespace gridloc {
 /// (check_memory: the file, the decoded image and the map's own byte per cell) before
 /// decoding. Returns an 8-bit image of 1 to 4 channels, rows from the top. Every fault is a
 /// gridloc::Error naming `path`; nothing is printed.
-cv::Mat read_map_image(const std::string& path, const ResourceLimits& limits);
+Image read_map_image(const std::string& path, const ResourceLimits& limits);
 
 }  // namespace gridloc

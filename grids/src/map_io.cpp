@@ -148,10 +148,10 @@ OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& li
   if (!fs::exists(image_path)) {
     fail(yaml_path, "image file '" + image_path.string() + "' not found");
   }
-  const cv::Mat img = read_map_image(image_path.string(), limits);
-  check_extent(meta, img.cols, img.rows, yaml_path, limits);
+  const Image img = read_map_image(image_path.string(), limits);
+  check_extent(meta, img.width, img.height, yaml_path, limits);
 
-  const int channels = img.channels();
+  const int channels = img.channels;
   const bool has_alpha = channels == 2 || channels == 4;
   // map_server averages the colour channels; alpha only marks unknown (not in trinary mode).
   const int colour_channels =
@@ -161,14 +161,14 @@ OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& li
   g.resolution = meta.resolution;
   g.origin = {meta.origin.x, meta.origin.y};
   g.yaw = meta.origin.theta;
-  g.width = img.cols;
-  g.height = img.rows;
+  g.width = img.width;
+  g.height = img.height;
   OccupancyMap map(g, CellState::Unknown);
 
-  for (int r = 0; r < img.rows; ++r) {
-    const auto* px = img.ptr<std::uint8_t>(r);
-    const int iy = img.rows - 1 - r;  // image row 0 is the top: flip so iy grows with y
-    for (int c = 0; c < img.cols; ++c) {
+  for (int r = 0; r < img.height; ++r) {
+    const std::uint8_t* px = img.row(r);
+    const int iy = img.height - 1 - r;  // image row 0 is the top: flip so iy grows with y
+    for (int c = 0; c < img.width; ++c) {
       const std::uint8_t* p = px + c * channels;
       int sum = 0;
       for (int k = 0; k < colour_channels; ++k) sum += p[k];

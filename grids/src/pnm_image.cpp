@@ -105,7 +105,7 @@ PnmHeader read_pnm_header(const std::string& bytes, const std::string& path) {
   return h;
 }
 
-cv::Mat decode_pnm(const std::string& bytes, const PnmHeader& header, const std::string& path) {
+Image decode_pnm(const std::string& bytes, const PnmHeader& header, const std::string& path) {
   const auto width = static_cast<int>(header.width), height = static_cast<int>(header.height);
   const std::size_t samples =
       static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * header.channels;
@@ -114,8 +114,8 @@ cv::Mat decode_pnm(const std::string& bytes, const PnmHeader& header, const std:
                    " bytes of pixels where the header declares " + std::to_string(width) + " x " +
                    std::to_string(height) + " (" + std::to_string(samples) + " bytes)");
   }
-  cv::Mat image(height, width, header.channels == 3 ? CV_8UC3 : CV_8UC1);
-  std::uint8_t* out = image.ptr<std::uint8_t>(0);  // continuous: rows follow each other
+  Image image(width, height, header.channels);
+  std::uint8_t* out = image.pixels.data();
   std::size_t at = header.data_at;
   for (std::size_t i = 0; i < samples; ++i) {
     double value = 0.0;

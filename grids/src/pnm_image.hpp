@@ -2,8 +2,9 @@
 // Netpbm map images (PGM P2/P5, PPM P3/P6), decoded by gridloc itself rather than OpenCV so
 // that a truncated or oversized file is one gridloc::Error and nothing is printed (issue 14).
 #include <cstddef>
-#include <opencv2/core.hpp>
 #include <string>
+
+#include "image.hpp"
 
 namespace gridloc {
 
@@ -28,6 +29,6 @@ PnmHeader read_pnm_header(const std::string& bytes, const std::string& path);
 /// A maxval below 255 is scaled to 0..255 as map_server does (v * 255 / maxval, rounded
 /// down); a sample above the maxval, or data shorter than the header declares, throws
 /// gridloc::Error naming `path` (and the pixel's row and column).
-cv::Mat decode_pnm(const std::string& bytes, const PnmHeader& header, const std::string& path);
+Image decode_pnm(const std::string& bytes, const PnmHeader& header, const std::string& path);
 
 }  // namespace gridloc
