@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <utility>
 
@@ -56,6 +54,31 @@ void check_extent(const MapMetadata& meta, int width, int height, const std::str
     check_coordinate(meta.origin.x + c * dx - s * dy, "a corner of the map (x)", file, limits);
     check_coordinate(meta.origin.y + s * dx + c * dy, "a corner of the map (y)", file, limits);
   }
+}
+
+/// The map as a binary PGM (P5), north up, in map_server's greys: 0 occupied, 254 free,
+/// 205 unknown. The header is the one OpenCV's imwrite wrote ("P5\n<w> <h>\n255\n").
+void write_pgm(const OccupancyMap& map, const std::string& pgm_path) {
+  if (map.width() < 1 || map.height() < 1) {
+    fail(pgm_path, "cannot write the image: the map has no cells");  // unreadable as a PGM
+  }
+  const auto width = static_cast<std::size_t>(map.width());
+  std::string bytes =
+      "P5\n" + std::to_string(map.width()) + " " + std::to_string(map.height()) + "\n255\n";
+  const std::size_t header_bytes = bytes.size();
+  bytes.resize(header_bytes + width * static_cast<std::size_t>(map.height()));
+  for (int iy = 0; iy < map.height(); ++iy) {
+    const auto image_row = static_cast<std::size_t>(map.height() - 1 - iy);
+    char* px = bytes.data() + header_bytes + image_row * width;
+    for (int ix = 0; ix < map.width(); ++ix) {
+      const CellState s = map.at(ix, iy);
+      px[ix] = static_cast<char>(s == CellState::Occupied ? 0 : s == CellState::Free ? 254 : 205);
+    }
+  }
+  std::ofstream out(pgm_path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) fail(pgm_path, "cannot write the image");
 }
 
 }  // namespace
@@ -201,21 +224,7 @@ OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& li
 void save_ros_map(const OccupancyMap& map, const std::string& yaml_path) {
   const fs::path yaml(yaml_path);
   const fs::path pgm = fs::path(yaml).replace_extension(".pgm");
-  cv::Mat img(map.height(), map.width(), CV_8UC1);
-  for (int iy = 0; iy < map.height(); ++iy) {
-    auto* px = img.ptr<std::uint8_t>(map.height() - 1 - iy);
-    for (int ix = 0; ix < map.width(); ++ix) {
-      const CellState s = map.at(ix, iy);
-      px[ix] = s == CellState::Occupied ? 0 : s == CellState::Free ? 254 : 205;
-    }
-  }
-  bool written = false;
-  try {
-    written = cv::imwrite(pgm.string(), img);
-  } catch (const cv::Exception& e) {
-    fail(pgm.string(), std::string("cannot write the image: ") + e.err);
-  }
-  if (!written) fail(pgm.string(), "cannot write the image");
+  write_pgm(map, pgm.string());
   std::ofstream out(yaml);
   if (!out) fail(yaml_path, "cannot write the map YAML");
   out << std::setprecision(17);  // round-trip exact doubles

@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -205,6 +209,50 @@ TEST(MapIo, SaveAndLoadRoundTrip) {
   EXPECT_NEAR(back.geometry.origin.x(), -1.25, 1e-12);
   EXPECT_NEAR(back.geometry.origin.y(), 3.5, 1e-12);
   EXPECT_EQ(back.cells, m.cells);
+}
+
+/// The bytes of the file at `path`.
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(MapIo, SavedPgmIsWhatOpenCvWroteAndLoadsBack) {
+  // save_ros_map writes its PGM itself (issue 18): the header OpenCV's imwrite wrote, the
+  // image rows from the top in map_server's greys, and the same cells when loaded.
+  TempDir dir;
+  GridGeometry g;
+  g.resolution = 0.1;
+  g.width = 37;
+  g.height = 23;
+  OccupancyMap m(g, U);
+  std::mt19937 rng(18);
+  for (CellState& cell : m.cells) cell = std::array{F, O, U}[rng() % 3];
+  save_ros_map(m, dir.file("saved.yaml"));
+  const std::string pgm_bytes = file_bytes(dir.file("saved.pgm"));
+  const std::string header = "P5\n37 23\n255\n";
+  ASSERT_EQ(pgm_bytes.size(), header.size() + 37 * 23);
+  EXPECT_EQ(pgm_bytes.substr(0, header.size()), header);
+  const cv::Mat img = cv::imread(dir.file("saved.pgm"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(img.type(), CV_8UC1);
+  ASSERT_EQ(img.cols, 37);
+  ASSERT_EQ(img.rows, 23);
+  for (int r = 0; r < img.rows; ++r) {
+    for (int c = 0; c < img.cols; ++c) {
+      const CellState s = m.at(c, img.rows - 1 - r);
+      const int want = s == O ? 0 : s == F ? 254 : 205;
+      ASSERT_EQ(img.at<std::uint8_t>(r, c), want) << "pixel " << r << ", " << c;
+    }
+  }
+  EXPECT_EQ(load_ros_map(dir.file("saved.yaml")).cells, m.cells);
+}
+
+TEST(MapIoErrors, UnwritableImageNamesThePgm) {
+  TempDir dir;
+  const OccupancyMap m = test::filled_map(3, 2, F, 0.1);
+  const std::string yaml_path = dir.file("no_such_folder/m.yaml");
+  expect_error([&] { save_ros_map(m, yaml_path); },
+               {"no_such_folder/m.pgm", "cannot write the image"});
 }
 
 // Known bug (grids/src/map_io.cpp, save_ros_map writes the YAML with the stream's default
