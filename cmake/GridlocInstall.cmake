@@ -27,5 +27,4 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/gridlocConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/gridlocConfigVersion.cmake
   COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/gridlocConfig.cmake ${PROJECT_BINARY_DIR}/gridlocConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/FindOpenCVModules.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gridloc)

@@ -59,7 +59,6 @@ set(expected
     ${LIBDIR}/cmake/gridloc/gridlocConfigVersion.cmake
     ${LIBDIR}/cmake/gridloc/gridlocTargets.cmake
     ${LIBDIR}/cmake/gridloc/gridlocOctomapTargets.cmake
-    ${LIBDIR}/cmake/gridloc/FindOpenCVModules.cmake
     ${DATADIR}/gridloc/maps/room_rect.yaml
     ${DATADIR}/gridloc/maps/room_rect.pgm
     ${DATADIR}/gridloc/maps/sensors/wheelchair_14.yaml)
@@ -81,15 +80,26 @@ endforeach()
 if(missing)
   message(FATAL_ERROR "TestInstall: missing from ${prefix}:\n  ${missing}")
 endif()
+# No package file looks for OpenCV or links its libraries: the libraries decode map images
+# themselves (issue 18).
+file(GLOB package_files ${prefix}/${LIBDIR}/cmake/gridloc/*)
+foreach(file IN LISTS package_files)
+  file(READ ${file} text)
+  if(text MATCHES "opencv_|OpenCVModules|(find_dependency|find_package)\\(OpenCV")
+    message(FATAL_ERROR "TestInstall: ${file} needs OpenCV ('${CMAKE_MATCH_0}')")
+  endif()
+endforeach()
 
 # 3. Configure the consumer against the prefix alone: the package registry and the system
 # paths' gridloc (if any) are off, and gridloc_DIR is checked below. It is a sonar-only
 # user without OctoMap (find_package(octomap) disabled): gridloc must not need it unless the
-# octomap component is asked for.
+# octomap component is asked for. Nor OpenCV (its config package and the OpenCVModules
+# finder gridloc's own build uses both disabled): gridloc never needs it (issue 18).
 set(consumer_args -S ${SOURCE_DIR}/examples/navigation_stack -B ${consumer_build}
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=${CONFIG}
     -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON
-    -DCMAKE_DISABLE_FIND_PACKAGE_octomap=ON)
+    -DCMAKE_DISABLE_FIND_PACKAGE_octomap=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_OpenCVModules=ON)
 if(GENERATOR)
   list(APPEND consumer_args -G ${GENERATOR})
 endif()
