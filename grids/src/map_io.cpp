@@ -83,13 +83,15 @@ void write_pgm(const OccupancyMap& map, const std::string& pgm_path) {
 
 }  // namespace
 
-static MapMetadata parse_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
+[[noreturn]] static void fail_too_large(const std::string& yaml_path) {
+  fail(yaml_path, "too large for a map_server YAML (it holds a few keys; at most " +
+                      std::to_string(kMaxMapYamlBytes) + " bytes are read)");
+}
+
+/// The map_server keys of `text`, the YAML that `yaml_path` names in messages.
+static MapMetadata parse_map_metadata(const std::string& text, const std::string& yaml_path,
+                                      const ResourceLimits& limits) {
   YAML::Node root;
-  if (check_input_file(yaml_path, "map YAML", limits) > kMaxMapYamlBytes) {
-    fail(yaml_path, "too large for a map_server YAML (it holds a few keys; at most " +
-                        std::to_string(kMaxMapYamlBytes) + " bytes are read)");
-  }
-  const std::string text = read_input_file(yaml_path, "map YAML", limits);
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
@@ -155,19 +157,30 @@ static MapMetadata parse_map_metadata(const std::string& yaml_path, const Resour
   return m;
 }
 
-MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
+/// parse_map_metadata, with the conversions not caught field by field (e.g. a non-scalar
+/// key) naming the file too.
+static MapMetadata map_metadata_of(const std::string& text, const std::string& yaml_path,
+                                   const ResourceLimits& limits) {
   try {
-    return parse_map_metadata(yaml_path, limits);
+    return parse_map_metadata(text, yaml_path, limits);
   } catch (const YAML::Exception& e) {
-    // Conversions not caught field by field (e.g. a non-scalar key) still name the file.
     fail(yaml_path, std::string("invalid map YAML: ") + e.what());
   }
 }
 
-OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& limits) {
-  const MapMetadata meta = load_map_metadata(yaml_path, limits);
+MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits& limits) {
+  if (check_input_file(yaml_path, "map YAML", limits) > kMaxMapYamlBytes) {
+    fail_too_large(yaml_path);
+  }
+  return map_metadata_of(read_input_file(yaml_path, "map YAML", limits), yaml_path, limits);
+}
+
+/// The map of `meta`, whose relative image path is relative to `image_folder`; `yaml_path`
+/// names the YAML in messages.
+static OccupancyMap map_of(const MapMetadata& meta, const std::string& yaml_path,
+                           const fs::path& image_folder, const ResourceLimits& limits) {
   fs::path image_path = meta.image;
-  if (image_path.is_relative()) image_path = fs::path(yaml_path).parent_path() / image_path;
+  if (image_path.is_relative()) image_path = image_folder / image_path;
   if (!fs::exists(image_path)) {
     fail(yaml_path, "image file '" + image_path.string() + "' not found");
   }
@@ -219,6 +232,19 @@ OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& li
     }
   }
   return map;
+}
+
+OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& limits) {
+  return map_of(load_map_metadata(yaml_path, limits), yaml_path, fs::path(yaml_path).parent_path(),
+                limits);
+}
+
+OccupancyMap load_ros_map_text(const std::string& yaml_text, const std::string& name,
+                               const std::string& image_folder, const ResourceLimits& limits) {
+  check_limit(static_cast<double>(yaml_text.size()) / (1024.0 * 1024.0), limits.max_file_mb, name,
+              "MB", LimitNames::file_mb);
+  if (yaml_text.size() > kMaxMapYamlBytes) fail_too_large(name);
+  return map_of(map_metadata_of(yaml_text, name, limits), name, image_folder, limits);
 }
 
 void save_ros_map(const OccupancyMap& map, const std::string& yaml_path) {

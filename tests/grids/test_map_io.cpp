@@ -74,6 +74,30 @@ TEST(MapIo, ImageRowZeroIsTheTopRowOfTheGrid) {
   }
 }
 
+// The YAML as text: the file's map, its image found in the folder given; errors name the
+// text by the name given; a text over the map_server YAML bound is refused.
+TEST(MapIo, TextOfAYamlLoadsAsItsFile) {
+  TempDir dir;
+  std::vector<std::uint8_t> px(12, 254);
+  px[5] = 0;
+  dir.write("m.pgm", pgm(4, 3, px));
+  const OccupancyMap from_file = load_ros_map(dir.write("m.yaml", yaml("m.pgm")));
+  const OccupancyMap from_text = load_ros_map_text(yaml("m.pgm"), "piped", dir.path().string());
+  EXPECT_EQ(from_text.cells, from_file.cells);
+  EXPECT_EQ(from_text.width(), from_file.width());
+  EXPECT_EQ(from_text.geometry.resolution, from_file.geometry.resolution);
+  expect_error([&] { load_ros_map_text(yaml("m.pgm"), "piped", dir.file("elsewhere")); },
+               {"piped", "m.pgm", "not found"});
+  expect_error([&] { load_ros_map_text(yaml("m.pgm", "mode: fancy\n"), "piped", "."); },
+               {"piped", "mode"});
+  expect_error(
+      [&] {
+        load_ros_map_text(yaml("m.pgm") + "#" + std::string(kMaxMapYamlBytes, ' ') + "\n", "piped",
+                          dir.path().string());
+      },
+      {"piped", "too large"});
+}
+
 TEST(MapIo, OffsetOriginPlacesCellCentres) {
   TempDir dir;
   std::vector<std::uint8_t> px(12, 254);

@@ -45,6 +45,13 @@ MapMetadata load_map_metadata(const std::string& yaml_path, const ResourceLimits
 /// file; nothing is printed.
 OccupancyMap load_ros_map(const std::string& yaml_path, const ResourceLimits& limits = {});
 
+/// load_ros_map for a map_server YAML that is not a file of its own (the gridloc CLI's
+/// standard input): `yaml_text` is the YAML, `name` stands for it in messages, and a relative
+/// `image:` is resolved against `image_folder`. The text is held to kMaxMapYamlBytes and
+/// max_file_mb; everything else is checked as load_ros_map checks it.
+OccupancyMap load_ros_map_text(const std::string& yaml_text, const std::string& name,
+                               const std::string& image_folder, const ResourceLimits& limits = {});
+
 /// Writes a map as map_server YAML + PGM (trinary: 0 occupied, 254 free, 205 unknown).
 void save_ros_map(const OccupancyMap& map, const std::string& yaml_path);
 
