@@ -12,6 +12,7 @@
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -25,7 +26,7 @@ struct DemoArgs {
 
 void run(const DemoArgs& args) {
   const OccupancyMap map = load_map(args.map, args.octomap.slice);
-  const SonarRing ring = load_sonar_ring(args.ring, limits());
+  const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   Rng rng(args.seed);
   const Pose2 truth = sample_free_pose(map, ring, 0.25, rng);
   const auto ranges = simulate_sonar(map, ring, truth, SonarSimOptions::realistic(rng.next()));
@@ -83,12 +84,15 @@ void add_demo(CLI::App& app) {
   args->map = data_dir() + "/room_furnished.yaml";
   args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("demo", "Simulate, perturb the prior, localize, report");
-  cmd->add_option("--map", args->map, "map_server YAML (or OctoMap .bt/.ot)")
+  cmd->add_option("--map", args->map,
+                  "map_server YAML (or OctoMap .bt/.ot) (- reads standard input)")
       ->capture_default_str();
   args->octomap.add_to(cmd);
-  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (- reads standard input)")
+      ->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of pose, prior and noise")->capture_default_str();
   cmd->add_flag("--json", args->json, "print JSON instead of text");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -27,6 +27,7 @@
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -60,7 +61,7 @@ PolygonMap load_polygon_inputs(const DisambiguateArgs& args) {
         "simulated); --scan and --readings go with an occupancy-grid map");
   }
   if (args.pose.empty()) throw Error("disambiguate: give the start with --pose x,y,theta");
-  return load_polygon_map(args.map, limits());
+  return load_polygon_map(map_input_path(args.map), limits());
 }
 
 nlohmann::json polygon_plan_json(const MinimumDistancePlan& plan, int true_index,
@@ -178,7 +179,7 @@ void run_on_polygons(const DisambiguateArgs& args) {
 }
 
 void run(const DisambiguateArgs& args) {
-  if (is_polygon_map_file(args.map, limits())) return run_on_polygons(args);
+  if (is_polygon_map_input(args.map)) return run_on_polygons(args);
   run_disambiguate_on_grid(args);
 }
 
@@ -191,17 +192,18 @@ void add_disambiguate(CLI::App& app) {
       "Where to drive, as little as possible, to tell look-alike places apart (seed 002)");
   cmd->add_option("--map", args->map,
                   "polygon map (YAML with a 'boundary': seed 002 exactly) or occupancy map "
-                  "(map_server YAML: the engine in the loop)")
+                  "(map_server YAML: the engine in the loop) (- reads standard input)")
       ->required();
   auto* pose = cmd->add_option("--pose", args->pose,
                                "the robot's true start x,y,theta (m, m, rad): its view there is "
                                "simulated with a perfect sensor");
-  auto* scan = cmd->add_option("--scan", args->scan,
-                               "occupancy maps: a laser scan CSV taken at the start; prints the "
-                               "hypotheses and the first stop to drive to");
+  auto* scan =
+      cmd->add_option("--scan", args->scan,
+                      "occupancy maps: a laser scan CSV taken at the start; prints the "
+                      "hypotheses and the first stop to drive to (- reads standard input)");
   auto* readings = cmd->add_option("--readings", args->readings,
                                    "occupancy maps: sonar readings JSON taken at the start (the "
-                                   "same, with --ring)");
+                                   "same, with --ring;(- reads standard input)");
   pose->excludes(scan)->excludes(readings);
   scan->excludes(readings);
   cmd->add_option("--range", args->range,
@@ -226,7 +228,7 @@ void add_disambiguate(CLI::App& app) {
                 "match the start view up to rotation too (default: the heading is known)");
   cmd->add_option("--ring", args->ring,
                   "occupancy maps: the sonar ring YAML (default: the "
-                  "bundled wheelchair)");
+                  "bundled wheelchair;(- reads standard input)");
   cmd->add_option("--sensor", args->sensor,
                   "occupancy maps with --pose: the simulated sensor, sonar or laser")
       ->check(CLI::IsMember({"sonar", "laser"}))
@@ -238,6 +240,7 @@ void add_disambiguate(CLI::App& app) {
   cmd->add_option("--out", args->out,
                   "folder for disambiguation.png and disambiguation.json (created if missing)");
   cmd->add_flag("--json", args->json, "print JSON instead of the summary");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}, {"--scan"}, {"--readings"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -21,6 +21,7 @@
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
 #include "progress.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -41,7 +42,7 @@ std::vector<std::string> split(const std::string& s) {
 
 /// A bare name ("room_l", "polygons/office") means a bundled map.
 std::string map_file(const std::string& name) {
-  return name.find(".yaml") == std::string::npos && !is_octomap_path(name)
+  return name != kStdin && name.find(".yaml") == std::string::npos && !is_octomap_path(name)
              ? data_dir() + "/" + name + ".yaml"
              : name;
 }
@@ -100,7 +101,7 @@ std::vector<std::string> map_files(const EvalArgs& args, bool sector_estimators)
   }
   if (files.empty()) throw Error("--maps names no map");
   for (const auto& f : files) {
-    if (!std::filesystem::exists(f)) throw Error("--maps: " + f + ": no such file");
+    if (f != kStdin && !std::filesystem::exists(f)) throw Error("--maps: " + f + ": no such file");
   }
   return files;
 }
@@ -108,9 +109,7 @@ std::vector<std::string> map_files(const EvalArgs& args, bool sector_estimators)
 /// True when `files` are polygon maps (the sector protocol), false when they are grid maps;
 /// throws when they mix the two, or when sector estimators get grid maps.
 bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators) {
-  const auto polygon = [](const std::string& f) {
-    return !is_octomap_path(f) && is_polygon_map_file(f);
-  };
+  const auto polygon = [](const std::string& f) { return is_polygon_map_input(f, "--maps"); };
   const std::size_t polygons =
       static_cast<std::size_t>(std::count_if(files.begin(), files.end(), polygon));
   if (polygons > 0 && polygons < files.size()) {
@@ -226,8 +225,9 @@ void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& proto
 
   const EvalOptions options = eval_options(args);
   std::vector<EvalMap> maps;
-  for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
-  const SonarRing ring = load_sonar_ring(args.ring, limits());
+  for (const auto& file : files)
+    maps.push_back({file, load_map(file, args.octomap.slice, "--maps")});
+  const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   const std::string what = "poses (" + std::to_string(maps.size()) + " maps x " +
                            std::to_string(args.trials) + " trials, " +
                            std::to_string(options.configurations.size()) + " configurations)";
@@ -248,14 +248,16 @@ void add_eval(CLI::App& app) {
   args->maps = "room_rect,room_l,room_furnished";
   args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
-  cmd->add_option("--maps", args->maps,
-                  "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths; "
-                  "polygon maps run the sector protocol (default there: " +
-                      std::string(kPolygonMaps) + ")")
+  cmd->add_option(
+         "--maps", args->maps,
+         "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths (one may be "
+         "-: standard input); polygon maps run the sector protocol (default there: " +
+             std::string(kPolygonMaps) + ")")
       ->capture_default_str()
       ->each([args](const std::string&) { args->maps_given = true; });
   args->octomap.add_to(cmd);
-  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (- reads standard input)")
+      ->capture_default_str();
   cmd->add_option("--trials", args->trials, "random poses per map")->capture_default_str();
   cmd->add_option("--seed", args->seed, "seed of poses, priors and noise")->capture_default_str();
   cmd->add_option("--noise", args->noise, "realistic | none")->capture_default_str();
@@ -302,6 +304,7 @@ void add_eval(CLI::App& app) {
       ->check(CLI::IsMember({"disambiguation", "team"}));
   add_disambiguation_options(cmd, protocol->disambiguation);
   add_team_options(cmd, protocol->team);
+  read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
   cmd->callback([args, drive, protocol] { run(*args, *drive, *protocol); });
 }
 

@@ -26,6 +26,7 @@
 #include "heatmap_volume.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -203,6 +204,7 @@ void add_heatmap(CLI::App& app) {
   cmd->add_option("--truth", args->truth, "true pose x,y,theta (m, m, rad), drawn when given");
   args->inputs.add_to(cmd,
                       "no prior: the whole map and every heading (at --step-theta when given)");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}, {"--readings"}, {"--scan"}});
   cmd->callback([args, cmd] {
     args->step_theta_given = cmd->count("--step-theta") > 0;
     run(*args);

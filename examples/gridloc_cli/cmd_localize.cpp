@@ -17,6 +17,7 @@
 #include "limit_options.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -57,19 +58,19 @@ std::unique_ptr<Estimator> make_sector_estimator(
     const LocalizeArgs& args, EstimatorKind kind,
     const std::shared_ptr<const CorrelationEstimator>& correlation) {
   // Global: the window (--prior or --global) only sets on_window_edge.
-  if (!is_polygon_map_file(args.inputs.map)) {
+  if (!is_polygon_map_input(args.inputs.map)) {
     throw Error(
         "--estimator " + args.estimator +
         " needs a polygon map (--map with a 'boundary'; maps/README.md, Polygon map format), not " +
-        args.inputs.map);
+        (args.inputs.map == kStdin ? std::string("standard input") : args.inputs.map));
   }
-  const PolygonMap polygons = load_polygon_map(args.inputs.map, limits());
+  const PolygonMap polygons = load_polygon_map(map_input_path(args.inputs.map), limits());
   SectorEstimatorOptions options;
   options.sectors.limits = limits();
   // Saved sectors (gridloc sectors --out) instead of computing them again.
-  SectorMap computed = args.sectors.empty()
-                           ? compute_sectors(polygons, options.sectors)
-                           : load_sectors(args.sectors, polygons, options.sectors, limits());
+  SectorMap computed = args.sectors.empty() ? compute_sectors(polygons, options.sectors)
+                                            : load_sectors(input_path(args.sectors, "--sectors"),
+                                                           polygons, options.sectors, limits());
   if (kind == EstimatorKind::Sectors) {
     return std::make_unique<SectorEstimator>(std::move(computed), options);
   }
@@ -175,11 +176,13 @@ void add_localize(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--sectors", args->sectors,
                   "--estimator sectors or sectors+correlation: the sectors saved by `gridloc "
-                  "sectors --out DIR` (DIR/sector_map.json) instead of computing them");
+                  "sectors --out DIR` (DIR/sector_map.json) instead of computing them (- reads "
+                  "standard input)");
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();
   // Issue 3's comparison scripts pass --json; localize prints JSON either way.
   cmd->add_flag("--json", args->json, "print JSON (the only output format; accepted for scripts)");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}, {"--readings"}, {"--scan"}, {"--sectors"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -15,6 +15,7 @@
 #include "gridloc/sensors/log_split.hpp"
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -108,12 +109,12 @@ void run(const MapFromLogArgs& args) {
   validate(args.split);
   CarmenOptions carmen;
   carmen.limits = limits();
-  const CarmenLog log = load_carmen_log(args.log, carmen);
+  const CarmenLog log = load_carmen_log(input_path(args.log, "--log"), carmen);
   const LogSplit split =
       args.part == "all" ? all_scans(log.lasers) : split_log(log.lasers, args.split);
   const std::vector<std::size_t>& scans = part_scans(split, args.part);
   if (scans.empty()) {
-    throw Error(args.log + ": the " + args.part + " part holds no scan (" +
+    throw Error(input_path(args.log, "--log") + ": the " + args.part + " part holds no scan (" +
                 std::to_string(split.blocks) + " block(s) of " + to_string(split.rule) + ")");
   }
   const OccupancyMap map = map_from_log(log, scans, map_options);
@@ -134,7 +135,8 @@ void add_map_from_log(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "map-from-log",
       "Draw an occupancy map from a SLAM-corrected CARMEN log (ray casting at its laser poses)");
-  cmd->add_option("--log", args->log, "CARMEN log, plain or gzip (FLASER / ROBOTLASER1 lines)")
+  cmd->add_option("--log", args->log,
+                  "CARMEN log, plain or gzip (FLASER / ROBOTLASER1 lines; - reads standard input)")
       ->required();
   cmd->add_option("--out", args->out, "map_server YAML to write (the PGM goes beside it)")
       ->required();

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "limit_options.hpp"
+#include "stdin_input.hpp"
 #include "track_trials.hpp"
 
 namespace gridloc::cli {
@@ -46,7 +47,8 @@ bool is_trial_line(const nlohmann::json& line) {
 
 /// Reads a shard's JSON Lines; throws naming the file (and line) when it is not one.
 ShardOutput read_shard(const std::string& path) {
-  std::istringstream text(read_input_file(path, "shard output (JSON Lines)", limits()));
+  std::istringstream text(
+      read_input_file(input_path(path, "files"), "shard output (JSON Lines)", limits()));
   ShardOutput shard;
   bool summary = false;
   std::string line;
@@ -131,7 +133,9 @@ void add_merge(CLI::App& app) {
       "merge",
       "Join the --json outputs of `track --trials N --shard K/N` (every shard once) into what "
       "one process prints: the trials in order and their summary");
-  cmd->add_option("files", *paths, "the shards' JSON Lines files")->required();
+  cmd->add_option("files", *paths, "the shards' JSON Lines files (one may be -: standard input)")
+      ->required();
+  read_stdin_at_most_once(cmd, {{"files"}});
   cmd->callback([paths] { run(*paths); });
 }
 

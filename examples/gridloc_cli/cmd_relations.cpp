@@ -12,6 +12,7 @@
 #include "gridloc/grids/error.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -71,8 +72,8 @@ void run(const RelationsArgs& args) {
   }
   CarmenOptions carmen;
   carmen.limits = limits();
-  const CarmenLog log = load_carmen_log(args.log, carmen);
-  const auto relations = load_slam_relations(args.relations, limits());
+  const CarmenLog log = load_carmen_log(input_path(args.log, "--log"), carmen);
+  const auto relations = load_slam_relations(input_path(args.relations, "--relations"), limits());
   const auto pairs = pair_relations(relations, log, args.time_offset, args.tolerance);
   const RelationEvalReport report = evaluate_relations(log, pairs, options);
   if (trials.is_open()) write_trials(trials, args.trials_out, report);
@@ -106,8 +107,11 @@ void add_relations(CLI::App& app) {
   auto args = std::make_shared<RelationsArgs>();
   auto* cmd = app.add_subcommand(
       "relations", "Match the scan pairs of a CARMEN log named by SLAM benchmark relations");
-  cmd->add_option("--log", args->log, "CARMEN log (FLASER / ROBOTLASER1 lines)")->required();
-  cmd->add_option("--relations", args->relations, "relations file: t1 t2 x y z roll pitch yaw")
+  cmd->add_option("--log", args->log,
+                  "CARMEN log, plain or gzip (FLASER / ROBOTLASER1 lines; - reads standard input)")
+      ->required();
+  cmd->add_option("--relations", args->relations,
+                  "relations file: t1 t2 x y z roll pitch yaw (- reads standard input)")
       ->required();
   cmd->add_option("--estimator", args->estimator,
                   "icp (seed 004's robust ICP) | correlation (the search on the reference "
@@ -176,6 +180,7 @@ void add_relations(CLI::App& app) {
   cmd->add_option("--trials-out", args->trials_out,
                   "write each pair's error, time and verdict to this CSV file");
   cmd->add_flag("--json", args->json, "print JSON");
+  read_stdin_at_most_once(cmd, {{"--log"}, {"--relations"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -19,6 +19,7 @@
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "sectors_render.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -101,7 +102,7 @@ void run(const SectorsArgs& args) {
     throw Error("--cell must be a positive cell size in metres, got " +
                 std::to_string(args.cell_m));
   }
-  const PolygonMap map = load_polygon_map(args.polygons, limits());
+  const PolygonMap map = load_polygon_map(input_path(args.polygons, "--polygons"), limits());
   // The folder first: a bad --out fails before the sectors are computed.
   if (!args.out.empty()) {
     std::error_code ec;
@@ -147,7 +148,9 @@ void add_sectors(CLI::App& app) {
   auto args = std::make_shared<SectorsArgs>();
   auto* cmd = app.add_subcommand(
       "sectors", "Visibility sectors of a polygon map and their labels (seed 000 Table 1)");
-  cmd->add_option("--polygons", args->polygons, "polygon map (YAML with a 'boundary')")->required();
+  cmd->add_option("--polygons", args->polygons,
+                  "polygon map (YAML with a 'boundary';(- reads standard input)")
+      ->required();
   cmd->add_option("--out", args->out,
                   "folder for sectors.png, sectors.json and sector_map.json (the sectors, for "
                   "localize --sectors; created if missing)");

@@ -12,6 +12,7 @@
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -66,7 +67,7 @@ void run(const SimulateArgs& args) {
     throw Error("--firings must lie in [1, 100], got " + std::to_string(args.firings));
   }
   const OccupancyMap map = load_map(args.map, args.octomap.slice);
-  const SonarRing ring = load_sonar_ring(args.ring, limits());
+  const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   // Consecutive firings from the same pose draw their noise independently: the first from
   // --seed (what one firing would read), the others from seeds hashed from it and k, so
   // that neighbouring --seed values share no firing.
@@ -89,9 +90,12 @@ void add_simulate(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
   args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
   auto* cmd = app.add_subcommand("simulate", "Simulate sonar readings at a pose; prints JSON");
-  cmd->add_option("--map", args->map, "map_server YAML (or OctoMap .bt/.ot)")->required();
+  cmd->add_option("--map", args->map,
+                  "map_server YAML (or OctoMap .bt/.ot) (- reads standard input)")
+      ->required();
   args->octomap.add_to(cmd);
-  cmd->add_option("--ring", args->ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (- reads standard input)")
+      ->capture_default_str();
   cmd->add_option("--pose", args->pose, "robot pose x,y,theta (m, m, rad)")->required();
   cmd->add_option("--out", args->out, "write the readings here instead of stdout");
   cmd->add_option("--seed", args->sim.seed, "noise seed")->capture_default_str();
@@ -119,6 +123,7 @@ void add_simulate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--realistic", args->realistic,
                 "use the evaluation's realistic noise (overrides the noise options)");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -17,6 +17,7 @@
 #include "gridloc/grids/polygon_map.hpp"
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "stdin_input.hpp"
 #include "team_io.hpp"
 #include "team_render.hpp"
 
@@ -44,7 +45,7 @@ TeamSensing sensing_from(const TeamArgs& args) {
   sensing.noise = !args.exact;
   if (sensing.sensor == TeamSensor::Sonar) {
     if (args.ring.empty()) throw Error("team --sensor sonar: give the ring with --ring");
-    sensing.ring = load_sonar_ring(args.ring, limits());
+    sensing.ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   }
   return sensing;
 }
@@ -129,10 +130,12 @@ void add_team(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "team", "Localize several robots together through the virtual links between them (seed 003)");
   cmd->add_option("--map", args->map,
-                  "polygon map (YAML with a 'boundary') or occupancy map (map_server YAML)")
+                  "polygon map (YAML with a 'boundary') or occupancy map (map_server YAML) (- "
+                  "reads standard input)")
       ->required();
   cmd->add_option("--robots", args->robots,
-                  "robots.json: each robot's scan (or sonar readings) and the measured links");
+                  "robots.json: each robot's scan (or sonar readings) and the measured links (- "
+                  "reads standard input)");
   cmd->add_option("--poses", args->poses,
                   "true poses \"x,y,theta;x,y,theta[;...]\" (m, m, theta in radians): each robot's "
                   "scan and the links are simulated there");
@@ -140,7 +143,7 @@ void add_team(CLI::App& app) {
                   "ir (the rotating IR sensor and its features, seed 003), laser or sonar (the "
                   "correlation engine's hypotheses)")
       ->check(CLI::IsMember({"ir", "laser", "sonar"}));
-  cmd->add_option("--ring", args->ring, "sonar ring YAML (--sensor sonar)");
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (--sensor sonar;(- reads standard input)");
   cmd->add_option("--ir-range", args->ir_range,
                   "the IR sensor's truncation range (m); the thesis truncated at 0.30")
       ->check(CLI::PositiveNumber);
@@ -154,6 +157,7 @@ void add_team(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "seed of the simulated noise");
   cmd->add_option("--out", args->out, "folder for team.png and team.json");
   cmd->add_flag("--json", args->json, "print the answer as JSON");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--robots"}, {"--ring"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -20,6 +20,7 @@
 #include "limit_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "stdin_input.hpp"
 #include "track_render.hpp"
 #include "track_trials.hpp"
 
@@ -166,7 +167,8 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.odometry_turn_error_per_m =
       options.localizer.jump_gate.odometry_turn_error_per_m = model.rad_per_m;
   if (!args.raw_odometry.empty()) {
-    options.raw_odometry = scan_odometry_from_gfs(log, load_gfs_scans(args.raw_odometry, limits()));
+    options.raw_odometry = scan_odometry_from_gfs(
+        log, load_gfs_scans(input_path(args.raw_odometry, "--raw-odometry"), limits()));
   }
   options.laser.max_range = args.max_range;
   options.laser.fuse_drive = args.fuse_drive;
@@ -289,7 +291,7 @@ void run(const TrackArgs& args) {
   const OccupancyMap map = load_map(args.map);
   CarmenOptions carmen;
   carmen.limits = limits();
-  const CarmenLog log = load_carmen_log(args.log, carmen);
+  const CarmenLog log = load_carmen_log(input_path(args.log, "--log"), carmen);
   const LogTrackingOptions options = tracking_options(args, log, map);
   if (args.trial_count > 0) return run_trials(args, log, map, options);
   if (!args.plot.empty()) check_plot_path(args.plot);
@@ -326,7 +328,7 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--seed", args.seed, "seed of --odometry-noise")->capture_default_str();
   cmd->add_option("--raw-odometry", args.raw_odometry,
                   "the robot's own odometry from a GMapping .gfs file of the same run (its "
-                  "LASER_READING poses, paired scan by scan with the log)");
+                  "LASER_READING poses, paired scan by scan with the log;(- reads standard input)");
   cmd->add_option("--odometry-error", args.odometry_error,
                   "the tracker's odometry error model FRAC,DEG_PER_M: how fast its places' "
                   "covariances grow, and what the jump gate allows")
@@ -382,8 +384,11 @@ void add_track(CLI::App& app) {
   auto args = std::make_shared<TrackArgs>();
   auto* cmd = app.add_subcommand(
       "track", "Run the Localizer through a CARMEN laser log (JSON Lines with --json)");
-  cmd->add_option("--map", args->map, "map: map_server YAML, OctoMap or polygon YAML")->required();
-  cmd->add_option("--log", args->log, "CARMEN log (FLASER / ROBOTLASER1 lines; .gz read too)")
+  cmd->add_option("--map", args->map,
+                  "map: map_server YAML, OctoMap or polygon YAML (- reads standard input)")
+      ->required();
+  cmd->add_option("--log", args->log,
+                  "CARMEN log (FLASER / ROBOTLASER1 lines; .gz read too; - reads standard input)")
       ->required();
   cmd->add_option("--prior", args->prior, "the pose at the first scan: x,y,theta (m, m, rad)");
   cmd->add_flag("--global", args->global, "localize the first scans on the whole map");
@@ -415,6 +420,7 @@ void add_track(CLI::App& app) {
   cmd->add_option("--plot", args->plot,
                   "a PNG of the track over the map (by verdict, the truth with "
                   "--truth-from-log, searches, rejected jumps) and the places' weights");
+  read_stdin_at_most_once(cmd, {{"--map"}, {"--log"}, {"--raw-odometry"}});
   cmd->callback([args] { run(*args); });
 }
 

@@ -44,12 +44,9 @@ void check_inputs(const DisambiguateArgs& args) {
 Observation sensed_at_start(const DisambiguateArgs& args) {
   Observation observation;
   if (!args.scan.empty()) {
-    observation.scan = load_input(args.scan, [&](const std::string& path) {
-      return load_scan_csv(path, args.max_range, limits());
-    });
+    observation.scan = load_scan_csv(input_path(args.scan, "--scan"), args.max_range, limits());
   } else {
-    observation.ranges = load_input(
-        args.readings, [](const std::string& path) { return load_readings(path, limits()); });
+    observation.ranges = load_readings(input_path(args.readings, "--readings"), limits());
   }
   return observation;
 }
@@ -104,8 +101,10 @@ nlohmann::json first_stop(const EngineLoop& loop, const DisambiguateArgs& args) 
 void run_disambiguate_on_grid(const DisambiguateArgs& args) {
   check_inputs(args);
   make_out_dir(args.out);
-  const SonarRing ring = load_sonar_ring(
-      args.ring.empty() ? data_dir() + "/sensors/wheelchair_14.yaml" : args.ring, limits());
+  const SonarRing ring =
+      load_sonar_ring(args.ring.empty() ? data_dir() + "/sensors/wheelchair_14.yaml"
+                                        : input_path(args.ring, "--ring"),
+                      limits());
   const EngineLoop loop(load_map(args.map), ring, loop_options(args));
   const nlohmann::json out = args.pose.empty() ? first_stop(loop, args) : simulated_run(loop, args);
   if (args.json) std::cout << out.dump(2) << "\n";

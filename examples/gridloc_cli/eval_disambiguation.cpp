@@ -16,6 +16,7 @@
 #include "limit_options.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -166,8 +167,9 @@ void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopIn
                           std::uint64_t seed, bool json, bool quiet) {
   const EngineDisambiguationOptions options = engine_loop_options(args, inputs, seed);
   std::vector<EvalMap> maps;
-  for (const std::string& file : inputs.map_files) maps.push_back({file, load_map(file)});
-  const SonarRing ring = load_sonar_ring(inputs.ring, limits());
+  for (const std::string& file : inputs.map_files)
+    maps.push_back({file, load_map(file, {}, "--maps")});
+  const SonarRing ring = load_sonar_ring(input_path(inputs.ring, "--ring"), limits());
   const std::vector<EngineDisambiguationResult> results = run_engine_disambiguation(
       maps, ring, options, progress_line("eval disambiguation --sensor", "trials", quiet));
   if (json) {

@@ -12,6 +12,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "progress.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -132,8 +133,9 @@ void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,
   check_args(args, drive);
   const DriveEvalOptions options = drive_options(args, drive);
   std::vector<EvalMap> maps;
-  for (const auto& file : files) maps.push_back({file, load_map(file, args.octomap.slice)});
-  const SonarRing ring = load_sonar_ring(args.ring, limits());
+  for (const auto& file : files)
+    maps.push_back({file, load_map(file, args.octomap.slice, "--maps")});
+  const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   const DriveEvalReport report = run_drive_evaluation(
       maps, ring, options, progress_line("eval --drive", "trials", args.quiet));
   if (args.json) {

@@ -10,6 +10,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 
 namespace gridloc::cli {
@@ -128,7 +129,8 @@ void print_table_rows(const SectorEvalOptions& options, const SectorEvalReport& 
 
 void run_sector_eval(const SectorEvalArgs& args) {
   std::vector<SectorEvalMap> maps;
-  for (const auto& path : args.maps) maps.push_back({path, load_polygon_map(path, limits())});
+  for (const auto& path : args.maps)
+    maps.push_back({path, load_polygon_map(map_input_path(path, "--maps"), limits())});
   const SectorEvalOptions& options = args.options;
   const std::string what = "poses (" + std::to_string(maps.size()) + " polygon maps x " +
                            std::to_string(options.trials) + " trials, " +

@@ -14,6 +14,7 @@
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
 #include "progress.hpp"
+#include "stdin_input.hpp"
 #include "team_io.hpp"
 
 namespace gridloc::cli {
@@ -28,7 +29,8 @@ TeamSensing sensing_from(const TeamEvalInputs& inputs) {
   sensing.laser_beams = inputs.laser_beams;
   sensing.laser_range_m = inputs.laser_max_range;
   sensing.laser_sigma_m = inputs.laser_sigma_m;
-  if (sensing.sensor == TeamSensor::Sonar) sensing.ring = load_sonar_ring(inputs.ring, limits());
+  if (sensing.sensor == TeamSensor::Sonar)
+    sensing.ring = load_sonar_ring(input_path(inputs.ring, "--ring"), limits());
   return sensing;
 }
 
@@ -102,7 +104,8 @@ void run_team_eval(const TeamEvalArgs& args, const TeamEvalInputs& inputs, std::
                    bool json, bool quiet) {
   const TeamSensing sensing = sensing_from(inputs);
   std::vector<TeamWorld> worlds;
-  for (const std::string& file : inputs.map_files) worlds.push_back(load_team_world(file));
+  for (const std::string& file : inputs.map_files)
+    worlds.push_back(load_team_world(file, "--maps"));
   std::vector<std::unique_ptr<TeamSimulator>> simulators;
   std::vector<const TeamSimulator*> pointers;
   for (const TeamWorld& world : worlds) {

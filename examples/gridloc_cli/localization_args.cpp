@@ -53,10 +53,13 @@ void FieldArgs::apply(CorrelationOptions& options) const {
 
 void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
   if (ring.empty()) ring = data_dir() + "/sensors/wheelchair_14.yaml";
-  cmd->add_option("--map", map, "map_server YAML (or OctoMap .bt/.ot) of the known map")
+  cmd->add_option("--map", map,
+                  "map_server YAML (or OctoMap .bt/.ot, or polygon YAML) of the known map (- "
+                  "reads standard input)")
       ->required();
   octomap.add_to(cmd);
-  cmd->add_option("--ring", ring, "sonar ring YAML")->capture_default_str();
+  cmd->add_option("--ring", ring, "sonar ring YAML (- reads standard input)")
+      ->capture_default_str();
   cmd->add_option("--readings", readings,
                   "sonar readings JSON {\"ranges_m\": [...]} (- reads standard input)");
   cmd->add_option("--scan", scan,
@@ -97,14 +100,12 @@ Localization prepare_localization(const LocalizationArgs& args) {
   Localization localization;
   std::vector<std::vector<double>> firings;
   if (args.scan.empty()) {
-    firings = load_input(args.readings,
-                         [](const std::string& path) { return load_firings(path, limits()); });
+    firings = load_firings(input_path(args.readings, "--readings"), limits());
     localization.firings = static_cast<int>(firings.size());
     localization.observation.ranges = firings.front();
   } else {
-    localization.observation.scan = load_input(args.scan, [&](const std::string& path) {
-      return load_scan_csv(path, args.max_range, limits());
-    });
+    localization.observation.scan =
+        load_scan_csv(input_path(args.scan, "--scan"), args.max_range, limits());
   }
   const auto t0 = clock::now();
   OccupancyMap map = load_map(args.map, args.octomap.slice);
@@ -124,7 +125,7 @@ Localization prepare_localization(const LocalizationArgs& args) {
   if (localization.observation.scan) {
     localization.estimator = std::make_unique<CorrelationEstimator>(std::move(map), options);
   } else {
-    SonarRing ring = load_sonar_ring(args.ring, limits());
+    SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
     if (firings.size() > 1) {  // consecutive firings: keep the echoes they repeat
       FilteredReadings filtered = filter_echoes(ring, firings);
       localization.observation.ranges = std::move(filtered.ranges);

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "gridloc/grids/error.hpp"
 #include "limit_options.hpp"
+#include "stdin_input.hpp"
 
 namespace {
 
@@ -66,10 +67,10 @@ int main(int argc, char** argv) {
     std::cerr << "gridloc: error: " << e.what() << "\n";
     return 2;
   } catch (const gridloc::Error& e) {
-    std::cerr << "gridloc: error: " << e.what() << "\n";
+    std::cerr << "gridloc: error: " << gridloc::cli::name_standard_input(e.what()) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "gridloc: internal error: " << e.what() << "\n";
+    std::cerr << "gridloc: internal error: " << gridloc::cli::name_standard_input(e.what()) << "\n";
     return 1;
   }
   return 0;

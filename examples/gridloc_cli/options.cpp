@@ -10,6 +10,7 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 
@@ -200,13 +201,49 @@ void OctomapArgs::add_to(CLI::App* cmd) {
       ->capture_default_str();
 }
 
-OccupancyMap load_map(const std::string& path, const OctomapSlice& slice) {
-  if (is_octomap_path(path)) return load_octomap(path, slice, limits());
-  // A polygon map (a YAML file with a `boundary`) is rasterized at its own resolution.
-  if (is_polygon_map_file(path, limits())) {
-    return rasterize_polygon_map(load_polygon_map(path, limits()), 0.0, 0.5, limits());
+namespace {
+
+/// The extension of the OctoMap whose first line is `first_line` (".bt" or ".ot"), or "".
+std::string octomap_extension_of(const std::string& first_line) {
+  if (first_line.rfind("# Octomap OcTree binary file", 0) == 0) return ".bt";
+  if (first_line.rfind("# Octomap OcTree file", 0) == 0) return ".ot";
+  return "";
+}
+
+}  // namespace
+
+std::string map_input_path(const std::string& path, const std::string& option) {
+  const std::string file = input_path(path, option);
+  if (path != kStdin) return file;
+  // Any other map is a YAML (map_server or polygon): is_polygon_map_file wants its extension.
+  const std::string extension = octomap_extension_of(stdin_first_line());
+  return stdin_path_with_extension(extension.empty() ? ".yaml" : extension);
+}
+
+bool is_polygon_map_input(const std::string& path, const std::string& option) {
+  const std::string file = map_input_path(path, option);
+  return !is_octomap_path(file) && is_polygon_map_file(file, limits());
+}
+
+OccupancyMap load_ros_map_input(const std::string& path, const std::string& option) {
+  const std::string file = input_path(path, option);
+  // A YAML over kMaxMapYamlBytes is refused by load_ros_map before it is read whole.
+  if (path != kStdin || check_input_file(file, "map YAML", limits()) > kMaxMapYamlBytes) {
+    return load_ros_map(file, limits());
   }
-  return load_ros_map(path, limits());
+  return load_ros_map_text(read_input_file(file, "map YAML", limits()), "standard input",
+                           std::filesystem::current_path().string(), limits());
+}
+
+OccupancyMap load_map(const std::string& path, const OctomapSlice& slice,
+                      const std::string& option) {
+  const std::string file = map_input_path(path, option);
+  if (is_octomap_path(file)) return load_octomap(file, slice, limits());
+  // A polygon map (a YAML file with a `boundary`) is rasterized at its own resolution.
+  if (is_polygon_map_file(file, limits())) {
+    return rasterize_polygon_map(load_polygon_map(file, limits()), 0.0, 0.5, limits());
+  }
+  return load_ros_map_input(path, option);
 }
 
 std::string data_dir() {

@@ -58,9 +58,24 @@ struct OctomapArgs {
   void add_to(CLI::App* cmd);
 };
 
-/// Loads a map by its extension: an OctoMap tree (.bt, .ot) sliced to the band of `slice`
-/// (load_octomap), otherwise a map_server YAML (load_ros_map).
-OccupancyMap load_map(const std::string& path, const OctomapSlice& slice = {});
+/// The file to read for a map option (`option` names it in errors): `path`, or for `-` the
+/// copy of standard input, named .bt or .ot when its first line is an OctoMap's, else .yaml
+/// (the loaders tell a map's kind by its extension first).
+std::string map_input_path(const std::string& path, const std::string& option = "--map");
+
+/// True when the map of `path` (`-`: standard input) is a polygon map (a YAML with a
+/// `boundary`), not an OctoMap or a map_server YAML.
+bool is_polygon_map_input(const std::string& path, const std::string& option = "--map");
+
+/// A map_server map; from `-` (standard input) its relative `image:` is relative to the
+/// current folder.
+OccupancyMap load_ros_map_input(const std::string& path, const std::string& option = "--map");
+
+/// Loads a map by its kind: an OctoMap tree (.bt, .ot) sliced to the band of `slice`
+/// (load_octomap), a polygon map rasterized at its own resolution, otherwise a map_server
+/// YAML (load_ros_map_input). `path` may be `-` (standard input; `option` names it).
+OccupancyMap load_map(const std::string& path, const OctomapSlice& slice = {},
+                      const std::string& option = "--map");
 
 /// Folder of the bundled maps: $GRIDLOC_DATA_DIR, else the source tree's maps/, else the
 /// installed share/gridloc/maps.

@@ -13,6 +13,7 @@
 #include "gridloc/sensors/readings_io.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "stdin_input.hpp"
 
 namespace gridloc::cli {
 
@@ -37,9 +38,11 @@ double number_in(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-TeamWorld load_team_world(const std::string& path) {
-  if (is_polygon_map_file(path, limits())) return make_team_world(load_polygon_map(path, limits()));
-  return make_team_world(load_ros_map(path, limits()));
+TeamWorld load_team_world(const std::string& path, const std::string& option) {
+  if (is_polygon_map_input(path, option)) {
+    return make_team_world(load_polygon_map(map_input_path(path, option), limits()));
+  }
+  return make_team_world(load_ros_map_input(path, option));
 }
 
 std::vector<Pose2> parse_team_poses(const std::string& text) {
@@ -66,7 +69,7 @@ void parse_link_noise(const std::string& text, CameraModel& camera) {
 namespace {
 
 nlohmann::json read_json(const std::string& path) {
-  const std::string text = read_input_file(path, "robots file", limits());
+  const std::string text = read_input_file(input_path(path, "--robots"), "robots file", limits());
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {

@@ -10,7 +10,7 @@
 namespace gridloc::cli {
 
 /// The team's world from a polygon map file (features exact) or a map_server YAML.
-TeamWorld load_team_world(const std::string& path);
+TeamWorld load_team_world(const std::string& path, const std::string& option = "--map");
 
 /// "x,y,theta;x,y,theta[;...]" (m, m, rad); throws gridloc::Error naming the robot.
 std::vector<Pose2> parse_team_poses(const std::string& text);
