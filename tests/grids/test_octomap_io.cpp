@@ -408,6 +408,24 @@ TEST(OctomapCli, LocalizeRunsOnABinaryTree) {
   EXPECT_EQ(std::count(g.err.begin(), g.err.end(), '\n'), 1) << g.err;
 }
 
+// `--map -` reads a tree from standard input, a .bt told from a .ot by its first line (there
+// is no name to tell them by): the same readings as from the tree's file.
+TEST(OctomapCli, TreesFromStandardInput) {
+  TempDir dir;
+  octomap::OcTree tree = extrude(load_ros_map(test::map_path("room_rect")));
+  const std::string ot = dir.file("room.ot"), bt = dir.file("room.bt");
+  ASSERT_TRUE(tree.write(ot));  // before writeBinary, which prunes
+  ASSERT_TRUE(tree.writeBinary(bt));
+  for (const std::string& file : {bt, ot}) {
+    const std::string simulate = "simulate --pose 2,1.5,0.5 --map ";
+    const CliRun from_file = run_cli(dir, simulate + quote(file));
+    ASSERT_EQ(from_file.status, 0) << from_file.err;
+    const CliRun piped = run_cli(dir, simulate + "- < " + quote(file));
+    ASSERT_EQ(piped.status, 0) << file << ": " << piped.err;
+    EXPECT_EQ(piped.out, from_file.out) << file;
+  }
+}
+
 #endif  // GRIDLOC_CLI_PATH
 
 }  // namespace
