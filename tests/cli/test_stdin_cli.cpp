@@ -166,8 +166,8 @@ TEST_F(StdinCli, LogFromStandardInputPlainAndGzip) {
     const CliRun r = run_cli(dir, "map-from-log --json --out " + quote(out) + " --log " + input);
     EXPECT_EQ(r.status, 0) << name << ": " << r.err;
     // The map's summary (its size and extent) and the drawn image.
-    const nlohmann::json map = r.status == 0 ? nlohmann::json::parse(r.out).at("map") : nullptr;
-    return std::pair{map, read_file(dir.file(name + ".pgm"))};
+    const nlohmann::json drawn = r.status == 0 ? nlohmann::json::parse(r.out).at("map") : nullptr;
+    return std::pair{drawn, read_file(dir.file(name + ".pgm"))};
   };
   const auto from_file = draw(quote(log), "file");
   ASSERT_FALSE(from_file.second.empty());
