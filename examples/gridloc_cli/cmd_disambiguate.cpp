@@ -203,7 +203,7 @@ void add_disambiguate(CLI::App& app) {
                       "hypotheses and the first stop to drive to (- reads standard input)");
   auto* readings = cmd->add_option("--readings", args->readings,
                                    "occupancy maps: sonar readings JSON taken at the start (the "
-                                   "same, with --ring;(- reads standard input)");
+                                   "same, with --ring; - reads standard input)");
   pose->excludes(scan)->excludes(readings);
   scan->excludes(readings);
   cmd->add_option("--range", args->range,
@@ -228,7 +228,7 @@ void add_disambiguate(CLI::App& app) {
                 "match the start view up to rotation too (default: the heading is known)");
   cmd->add_option("--ring", args->ring,
                   "occupancy maps: the sonar ring YAML (default: the "
-                  "bundled wheelchair;(- reads standard input)");
+                  "bundled wheelchair; - reads standard input)");
   cmd->add_option("--sensor", args->sensor,
                   "occupancy maps with --pose: the simulated sensor, sonar or laser")
       ->check(CLI::IsMember({"sonar", "laser"}))

@@ -149,7 +149,7 @@ void add_sectors(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "sectors", "Visibility sectors of a polygon map and their labels (seed 000 Table 1)");
   cmd->add_option("--polygons", args->polygons,
-                  "polygon map (YAML with a 'boundary';(- reads standard input)")
+                  "polygon map (YAML with a 'boundary'; - reads standard input)")
       ->required();
   cmd->add_option("--out", args->out,
                   "folder for sectors.png, sectors.json and sector_map.json (the sectors, for "

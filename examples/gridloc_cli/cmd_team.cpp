@@ -143,7 +143,7 @@ void add_team(CLI::App& app) {
                   "ir (the rotating IR sensor and its features, seed 003), laser or sonar (the "
                   "correlation engine's hypotheses)")
       ->check(CLI::IsMember({"ir", "laser", "sonar"}));
-  cmd->add_option("--ring", args->ring, "sonar ring YAML (--sensor sonar;(- reads standard input)");
+  cmd->add_option("--ring", args->ring, "sonar ring YAML (--sensor sonar; - reads standard input)");
   cmd->add_option("--ir-range", args->ir_range,
                   "the IR sensor's truncation range (m); the thesis truncated at 0.30")
       ->check(CLI::PositiveNumber);

@@ -328,7 +328,7 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--seed", args.seed, "seed of --odometry-noise")->capture_default_str();
   cmd->add_option("--raw-odometry", args.raw_odometry,
                   "the robot's own odometry from a GMapping .gfs file of the same run (its "
-                  "LASER_READING poses, paired scan by scan with the log;(- reads standard input)");
+                  "LASER_READING poses, paired scan by scan with the log; - reads standard input)");
   cmd->add_option("--odometry-error", args.odometry_error,
                   "the tracker's odometry error model FRAC,DEG_PER_M: how fast its places' "
                   "covariances grow, and what the jump gate allows")
