@@ -245,6 +245,8 @@ class Localizer {
   /// The window's evidence (HypothesisWeightOptions::evidence_per_scan times its normalized
   /// score) plus the log prior of its pose.
   double posterior(const Estimate& e, const PlacePrior& prior) const;
+  /// Whether a world pose lies on the map's grid.
+  bool on_map(const Pose2& pose) const;
   /// Whether a window centred at `pose` lies on the coarse copy's grid.
   bool coarse_contains(const Pose2& pose) const;
   /// A coarse window's peaks apart from `chosen` and scoring split_ratio of its best, each
