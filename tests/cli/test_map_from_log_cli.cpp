@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli_support.hpp"
+#include "flaser_log.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
 #include "test_support.hpp"
@@ -23,28 +24,7 @@ using test::quote;
 using test::run_cli;
 using test::TempDir;
 
-/// A 6 m x 4 m room at 5 cm, origin (0, 0).
-OccupancyMap room() {
-  return test::walled_room(120, 80, 0.05, {0.0, 0.0});
-}
-
-/// `scans` FLASER lines (181 readings over the front 180 degrees) driving east then turning,
-/// `dt` seconds apart from t = 5.
-std::string flaser_log(int scans, double dt) {
-  const OccupancyMap map = room();
-  std::ostringstream out;
-  out.precision(9);
-  for (int k = 0; k < scans; ++k) {
-    const Pose2 pose{1.0 + 4.0 * k / scans, 2.0, 0.15 * k};
-    const RangeScan all = simulate_scan(map, pose, 360, 8.0, 0.005, k + 1);
-    out << "FLASER 181";
-    for (int b = 90; b <= 270; ++b) out << " " << (all.ranges[b] < 8.0 ? all.ranges[b] : 81.91);
-    for (int twice = 0; twice < 2; ++twice)
-      out << " " << pose.x << " " << pose.y << " " << pose.theta;
-    out << " " << 5.0 + dt * k << " sim " << 5.0 + dt * k << "\n";
-  }
-  return out.str();
-}
+using test::flaser_log;
 
 TEST(MapFromLogCli, DrawsAllScansIntoAMapServerMap) {
   TempDir dir;

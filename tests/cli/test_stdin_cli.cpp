@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "cli_support.hpp"
+#include "flaser_log.hpp"
 #include "gridloc/sensors/scan_sim.hpp"
 #include "test_support.hpp"
 
@@ -129,23 +130,6 @@ TEST_F(StdinCli, RingFromStandardInput) {
   EXPECT_EQ(pose_of(run_cli(dir, localize + " --ring - < " + quote(test::ring_path()))), from_file);
 }
 
-/// `scans` FLASER lines in a 6 m x 4 m room, driving east and turning, 2 s apart.
-std::string flaser_log(int scans) {
-  const OccupancyMap room = test::walled_room(120, 80, 0.05, {0.0, 0.0});
-  std::ostringstream out;
-  out.precision(9);
-  for (int k = 0; k < scans; ++k) {
-    const Pose2 pose{1.0 + 4.0 * k / scans, 2.0, 0.15 * k};
-    const RangeScan all = simulate_scan(room, pose, 360, 8.0, 0.005, k + 1);
-    out << "FLASER 181";
-    for (int b = 90; b <= 270; ++b) out << " " << (all.ranges[b] < 8.0 ? all.ranges[b] : 81.91);
-    for (int twice = 0; twice < 2; ++twice)
-      out << " " << pose.x << " " << pose.y << " " << pose.theta;
-    out << " " << 5.0 + 2.0 * k << " sim " << 5.0 + 2.0 * k << "\n";
-  }
-  return out.str();
-}
-
 /// `text` gzip-compressed into `path`.
 void write_gzip(const std::string& path, const std::string& text) {
   gzFile file = gzopen(path.c_str(), "wb");
@@ -158,7 +142,7 @@ void write_gzip(const std::string& path, const std::string& text) {
 // A CARMEN log from standard input, plain or gzip (told by its bytes, as there is no name):
 // the same map as from the file.
 TEST_F(StdinCli, LogFromStandardInputPlainAndGzip) {
-  const std::string log = dir.write("room.log", flaser_log(30));
+  const std::string log = dir.write("room.log", test::flaser_log(30, 2.0));
   const std::string gz = dir.file("room.log.gz");
   write_gzip(gz, read_file(log));
   const auto draw = [&](const std::string& input, const std::string& name) {
