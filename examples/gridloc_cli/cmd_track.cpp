@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -34,6 +35,7 @@ struct TrackArgs {
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
   double localized_fit_ratio = LocalizerOptions{}.localized_fit_ratio;
+  double max_window_turn_deg = LocalizerOptions{}.max_half_theta * 180.0 / std::numbers::pi;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
@@ -159,6 +161,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
   options.localizer.localized_fit_ratio = args.localized_fit_ratio;
+  options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.resolution = args.search_resolution;
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
@@ -342,6 +345,9 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--localized-fit-ratio", args.localized_fit_ratio,
                   "a window scoring below this share of its place's usual normalized score is "
                   "not localized (0: no such rule)")
+      ->capture_default_str();
+  cmd->add_option("--max-window-turn", args.max_window_turn_deg,
+                  "a tracked place's window spans at most this many degrees either way")
       ->capture_default_str();
   cmd->add_option("--search-resolution", args.search_resolution,
                   "cell (m) of the coarse copy of the map the whole-map searches run on, their "

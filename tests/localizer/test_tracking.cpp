@@ -155,6 +155,42 @@ TEST(Tracking, AScanFittingFarWorseThanUsualIsNotLocalizedUnderTheFitRule) {
   EXPECT_THROW(Localizer(map, laser(), bad), Error);
 }
 
+// LocalizerOptions::max_half_theta: when the odometry claims a turn the robot did not make
+// and doubts its heading entirely, the place is looked for at every heading by default, and
+// within the cap either way of the claimed heading with it (a corridor turned round, which
+// reads the same, is left to a loss and the re-search).
+TEST(Tracking, APlaceIsLookedForWithinTheHeadingCap) {
+  const OccupancyMap map = two_rooms();
+  std::vector<Pose2> path;  // east through room B
+  for (double x = 8.0; x < 9.05; x += 0.1) path.push_back({x, 5.5, 0.0});
+  for (const double cap_deg : {180.0, 60.0}) {
+    LocalizerOptions options = laser_options();
+    options.max_half_theta = deg2rad(cap_deg);
+    options.odometry_turn_error_per_rad = 1.0;  // a turn's heading is unknown
+    Localizer localizer(map, laser(), options);
+    localizer.add_odometry(path[0]);
+    localizer.set_prior(path[0], Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      localizer.add_odometry(path[k]);
+      localizer.add_observation(double(k), scan_at(map, path[k]));
+      ASSERT_TRUE(right(localizer.estimate(), path[k])) << "cap " << cap_deg << " step " << k;
+    }
+    const Pose2 claimed{path.back().x, path.back().y, deg2rad(150.0)};  // a turn never made
+    localizer.add_odometry(claimed);
+    localizer.add_observation(double(path.size()), scan_at(map, path.back()));
+    const Estimate e = localizer.estimate();
+    if (cap_deg == 180.0) {
+      EXPECT_TRUE(right(e, path.back())) << "heading " << rad2deg(e.pose.theta);
+    } else {
+      EXPECT_LE(std::abs(normalize_angle(e.pose.theta - claimed.theta)), deg2rad(cap_deg + 1.0));
+      EXPECT_NE(e.verdict, Verdict::Localized);
+    }
+  }
+  LocalizerOptions bad = laser_options();
+  bad.max_half_theta = 0.5 * bad.min_half_theta;
+  EXPECT_THROW(Localizer(map, laser(), bad), Error);
+}
+
 TEST(Tracking, AReSearchRunsInSlicesAcrossUpdates) {
   const OccupancyMap map = two_rooms();
   LocalizerOptions options = laser_options();

@@ -37,6 +37,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.max_half_xy_m, "must be finite and >= min_half_xy_m");
   require(options.min_half_theta > 0.0 && options.min_half_theta <= std::numbers::pi,
           "min_half_theta", options.min_half_theta, "must lie in (0, pi]");
+  require(finite_at_least(options.max_half_theta, options.min_half_theta), "max_half_theta",
+          options.max_half_theta, "must be finite and >= min_half_theta");
   require(options.misses_before_global >= 1, "misses_before_global", options.misses_before_global,
           "must be at least 1");
   require(finite_at_least(options.max_range_slack_m, 0.0), "max_range_slack_m",
@@ -390,7 +392,8 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
                                                    // once more, twice as wide
     window.half_xy =
         std::min(2.0 * window.half_xy, std::max(options_.max_half_xy_m, window.half_xy));
-    window.half_theta = std::min(2.0 * window.half_theta, std::numbers::pi);
+    window.half_theta =
+        std::min(2.0 * window.half_theta, std::min(options_.max_half_theta, std::numbers::pi));
     e = search_window(observation, window, covariance);
   }
   place(hypothesis, e, observation, global);

@@ -115,9 +115,10 @@ SearchWindow Localizer::window_around(const TrackedHypothesis& hypothesis,
   window.half_xy = std::clamp(options_.prior_sigmas * sigma_xy,
                               std::min(widen * options_.min_half_xy_m, options_.max_half_xy_m),
                               options_.max_half_xy_m);
+  const double max_half_theta = std::min(options_.max_half_theta, std::numbers::pi);
   window.half_theta =
       std::clamp(options_.prior_sigmas * std::sqrt(covariance(2, 2)),
-                 std::min(widen * options_.min_half_theta, std::numbers::pi), std::numbers::pi);
+                 std::min(widen * options_.min_half_theta, max_half_theta), max_half_theta);
   return window;
 }
 

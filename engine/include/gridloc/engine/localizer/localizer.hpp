@@ -10,6 +10,7 @@
 /// `localized` answer must agree with the last one and the odometry (jump_gate.hpp).
 #include <Eigen/Core>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <shared_mutex>
 #include <vector>
@@ -44,7 +45,10 @@ struct LocalizerOptions {
   double odometry_turn_error_per_rad = 0.02;
   double min_half_xy_m = 0.3;    ///< the window's half side is at least this...
   double max_half_xy_m = 2.0;    ///< ...and at most this (a place unconfirmed longer is kept)
-  double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this
+  double min_half_theta = 0.17;  ///< rad (10 deg): the half heading range is at least this...
+  /// ...and at most this (rad): a place the odometry has turned more than this is not looked
+  /// for turned round, where a corridor reads the same (a loss and the re-search find it).
+  double max_half_theta = 0.5 * std::numbers::pi;
   /// After this many observations in a row whose window explained nothing at the heaviest
   /// place, a re-search of the whole map starts (a wrong prior or a lost track); its places
   /// join with HypothesisWeightOptions::entry_weight. `ambiguous` answers are no miss: the
