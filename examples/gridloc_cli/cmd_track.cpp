@@ -112,6 +112,7 @@ nlohmann::json step_json(const TrackStep& step, const std::optional<Pose2>& trut
   nlohmann::json line = {{"index", step.index},
                          {"search", search},
                          {"jump_rejected", step.status.jump_rejected},
+                         {"confirming", step.status.confirming},
                          {"time", step.time},
                          {"pose", cli::to_json(e.pose)},
                          {"verdict", to_string(e.verdict)},

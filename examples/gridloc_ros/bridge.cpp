@@ -45,6 +45,7 @@ gridloc::LocalizerOptions localizer_options(const BridgeOptions& options, double
       options.odometry_error_per_m;
   localizer.odometry_turn_error_per_m = localizer.jump_gate.odometry_turn_error_per_m =
       gridloc::deg2rad(options.odometry_turn_deg_per_m);
+  localizer.jump_gate.settle_first = options.settle_first;
   return localizer;
 }
 

@@ -45,6 +45,9 @@ struct BridgeOptions {
   /// The odometry model the places' covariances grow by (share of path, degrees per metre).
   double odometry_error_per_m = 0.05;
   double odometry_turn_deg_per_m = 5.0;
+  /// From no prior, the first place is `localized` only once the drive has borne it out
+  /// (gridloc::JumpGateOptions::settle_first); false: one scan may localize.
+  bool settle_first = true;
 };
 
 struct Answer {

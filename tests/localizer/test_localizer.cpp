@@ -39,16 +39,24 @@ std::vector<double> driver_firing(const OccupancyMap& map, const Pose2& pose) {
   return ranges;
 }
 
+// From no prior a standstill firing finds the place, but it is `not localized` (confirming)
+// until the drive bears it out (JumpGateOptions::settle_first); without the rule, at once.
 TEST(Localizer, AStandstillFiringLocalizesGlobally) {
   const OccupancyMap map = load_ros_map(test::map_path("room_furnished"));
-  Localizer localizer(map, ring());
-  test::expect_error([&] { localizer.estimate(); }, {"no estimate yet"});
-  const Pose2 truth{2.42, 2.27, -0.35};
-  localizer.add_observation(0.0, driver_firing(map, truth));
-  const Estimate e = localizer.estimate();
-  EXPECT_LE(position_error(e, truth), 0.10);
-  EXPECT_LE(heading_error(e, truth), deg2rad(7.0));
-  EXPECT_EQ(e.verdict, Verdict::Localized);
+  for (const bool settle_first : {true, false}) {
+    LocalizerOptions options;
+    options.jump_gate.settle_first = settle_first;
+    Localizer localizer(map, ring(), options);
+    test::expect_error([&] { localizer.estimate(); }, {"no estimate yet"});
+    const Pose2 truth{2.42, 2.27, -0.35};
+    localizer.add_observation(0.0, driver_firing(map, truth));
+    const Estimate e = localizer.estimate();
+    EXPECT_LE(position_error(e, truth), 0.10);
+    EXPECT_LE(heading_error(e, truth), deg2rad(7.0));
+    EXPECT_EQ(e.verdict, settle_first ? Verdict::NotLocalized : Verdict::Localized);
+    EXPECT_EQ(localizer.status().confirming, settle_first);
+    EXPECT_FALSE(localizer.status().jump_rejected);
+  }
 }
 
 TEST(Localizer, TracksThroughOdometryInItsOwnFrame) {
@@ -114,10 +122,11 @@ TEST(Localizer, AWrongPriorGivesWayOnceTheDriveConfirmsTheReSearchsPlace) {
     truth_tracked = truth_tracked || std::hypot(h.pose.x - start.x, h.pose.y - start.y) < 0.1;
   }
   EXPECT_TRUE(truth_tracked);
-  // A short drive weighs them: the prior explains nothing, the truth everything.
+  // A short drive weighs them: the prior explains nothing, the truth everything; the truth
+  // contradicts the prior the user gave, so the jump gate holds it for a metre.
   Verdict last = Verdict::NotLocalized;
   Pose2 truth = start;
-  for (int k = 1; k <= 6 && last != Verdict::Localized; ++k) {
+  for (int k = 1; k <= 15 && last != Verdict::Localized; ++k) {
     truth = compose(start, {0.1 * k, 0.0, 0.0});
     localizer.add_odometry({0.1 * k, 0.0, 0.0});
     localizer.add_observation(2 + k, driver_firing(map, truth));

@@ -33,6 +33,11 @@ void JumpGate::reset() {
   settling_.reset();
 }
 
+void JumpGate::reset(const GatedPose& reference) {
+  reference_ = reference;
+  settling_.reset();
+}
+
 bool JumpGate::consistent(const GatedPose& a, const GatedPose& b) const {
   const Pose2 moved = relative_pose(a.odometry, b.odometry);
   const Pose2 predicted = compose(a.pose, moved);
@@ -52,7 +57,7 @@ bool JumpGate::consistent(const GatedPose& a, const GatedPose& b) const {
 }
 
 bool JumpGate::admit(const GatedPose& answer) {
-  if (!reference_ || consistent(*reference_, answer)) {
+  if (reference_ ? consistent(*reference_, answer) : !options_.settle_first) {
     reference_ = answer;
     settling_.reset();
     return true;

@@ -181,7 +181,7 @@ void Localizer::set_prior(const Pose2& pose, const Eigen::Matrix3d& covariance) 
   state_.travelled_m = 0.0;
   state_.turned_rad = 0.0;
   state_.search.reset();
-  state_.gate.reset();
+  state_.gate.reset({pose, covariance, state_.set_odometry});
 }
 
 void Localizer::add_odometry(const Pose2& odometry) {
@@ -254,9 +254,10 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   Estimate e = next.set.hypotheses.empty() ? searched.value_or(next.estimate.value_or(Estimate{}))
                                            : weighted_estimate(next.set.hypotheses, weights);
   if (next.set.hypotheses.empty()) e.verdict = Verdict::NotLocalized;
+  const bool had_reference = next.gate.has_reference();
   if (e.verdict == Verdict::Localized && !next.gate.admit({e.pose, e.covariance, taken_at})) {
     e.verdict = Verdict::NotLocalized;
-    next.status.jump_rejected = true;
+    (had_reference ? next.status.jump_rejected : next.status.confirming) = true;
   }
   take_estimate(next, e, taken_at);
   std::unique_lock lock(mutex_);

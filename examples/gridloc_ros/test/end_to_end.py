@@ -5,8 +5,10 @@ Starts roscore on a free loopback port, then the node three times: with the bund
 wheelchair's sonar ring from its file (a map on `map`, an `initialpose`, one firing as 14
 `sensor_msgs/Range`, then `~localize`), the same ring from tf (`~sonar_frames`, the mounts
 base_link -> sonar_i on /tf_static), and with a laser (`global_localization`, one
-`sensor_msgs/LaserScan`, then `~localize`). Each answer must be `localized` within 10 cm and 7 degrees of the truth, and the
-map -> odom transform must be on tf. Readings come from `gridloc simulate`. Everything started
+`sensor_msgs/LaserScan`, then `~localize`). Each sonar answer must be `localized` within 10 cm
+and 7 degrees of the truth, and the map -> odom transform must be on tf. The laser's one scan
+from no prior is a guess the drive must bear out (`~settle_first`): its answer is
+`not localized`, with the pose within 10 cm and 7 degrees. Readings come from `gridloc simulate`. Everything started
 is stopped. Exits 77 (ctest: skipped) when ROS 1 is not installed.
 """
 import argparse
@@ -155,6 +157,17 @@ def check_answer(answer, label):
     print(f"{label}: localized {off_m * 100:.1f} cm {off_deg:.2f} deg from the truth")
 
 
+def check_guess(answer, label):
+    """A first place from no prior, not yet borne out by a drive: right, `not localized`."""
+    assert not answer.success, f"{label}: localized from one scan: {answer.message}"
+    pose = json.loads(answer.message)
+    off_m = math.hypot(pose["x"] - TRUTH[0], pose["y"] - TRUTH[1])
+    off_deg = abs(math.degrees(math.remainder(pose["theta"] - TRUTH[2], 2 * math.pi)))
+    assert pose["verdict"] == "not localized", f"{label}: {pose}"
+    assert off_m <= 0.10 and off_deg <= 7.0, f"{label}: {off_m:.3f} m {off_deg:.1f} deg off: {pose}"
+    print(f"{label}: not localized yet (confirming), {off_m * 100:.1f} cm {off_deg:.2f} deg from the truth")
+
+
 def simulate(gridloc, maps, extra):
     command = [gridloc, "simulate", "--map", os.path.join(maps, "room_furnished.yaml"),
                "--pose", ",".join(str(v) for v in TRUTH)] + extra
@@ -249,8 +262,7 @@ def laser_case(run, args, publishers, tf_seen):
     wait_for("scan's subscriber", lambda: publishers["scan"].get_num_connections() > 0)
     publishers["scan"].publish(scan)
     localize_until_ready(localize, {"no scan yet"})
-    check_answer(localize(), "laser, global_localization, ~localize")
-    wait_for("map -> odom on tf", lambda: tf_seen.get("odom") is not None)
+    check_guess(localize(), "laser, global_localization, ~localize")
     run.stop(node)
 
 

@@ -132,6 +132,9 @@ struct LocalizerStatus {
   int search_slices = 0;         ///< ...of these (0 and 0: none under way)
   bool search_finished = false;  ///< a search finished at this observation; its places joined
   bool jump_rejected = false;    ///< the answer was `localized` but the jump gate refused it
+  /// The answer was `localized` but is the first place from no prior, not yet borne out by
+  /// the drive (JumpGateOptions::settle_first): `not localized` meanwhile.
+  bool confirming = false;
 };
 
 /// What the Localizer holds between calls (see Localizer).
