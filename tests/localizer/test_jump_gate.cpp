@@ -55,6 +55,9 @@ TEST(JumpGate, AHeadingJumpIsRefused) {
   JumpGateOptions bad;
   bad.settle_updates = 0;
   test::expect_error([&] { JumpGate broken(bad); }, {"settle_updates"});
+  bad = {};
+  bad.settle_first_updates = 0;
+  test::expect_error([&] { JumpGate broken(bad); }, {"settle_first_updates"});
 }
 
 // settle_first (the default): the first place from no prior holds over the settling drive
@@ -67,6 +70,12 @@ TEST(JumpGate, TheFirstPlaceSettlesUnlessAPriorVouchesForIt) {
   EXPECT_FALSE(gate.admit(at(1.5, 1.0, 0.5)));
   EXPECT_TRUE(gate.admit(at(2.0, 1.0, 1.0)));  // 1 m and 7 answers on the same place
   EXPECT_TRUE(gate.has_reference());
+  JumpGate sparse;  // scans far apart: the first place and one 5 m on suffice
+  EXPECT_FALSE(sparse.admit(at(1.0, 1.0, 0.0)));
+  EXPECT_TRUE(sparse.admit(at(6.0, 1.0, 5.0)));
+  JumpGate moved_away;  // the next answer elsewhere starts settling afresh
+  EXPECT_FALSE(moved_away.admit(at(1.0, 1.0, 0.0)));
+  EXPECT_FALSE(moved_away.admit(at(9.0, 1.0, 5.0)));
   JumpGate vouched;
   vouched.reset(at(1.0, 1.0, 0.0));
   EXPECT_TRUE(vouched.admit(at(1.02, 1.0, 0.0)));

@@ -22,6 +22,10 @@ void validate(const JumpGateOptions& options) {
     throw Error("jump gate: settle_updates must be at least 1, got " +
                 std::to_string(options.settle_updates));
   }
+  if (options.settle_first_updates < 1) {
+    throw Error("jump gate: settle_first_updates must be at least 1, got " +
+                std::to_string(options.settle_first_updates));
+  }
 }
 
 JumpGate::JumpGate(JumpGateOptions options) : options_(options) {
@@ -70,7 +74,8 @@ bool JumpGate::admit(const GatedPose& answer) {
   } else {
     settling_ = Settling{answer};
   }
-  if (settling_->driven_m >= options_.settle_m && settling_->updates >= options_.settle_updates) {
+  const int updates = reference_ ? options_.settle_updates : options_.settle_first_updates;
+  if (settling_->driven_m >= options_.settle_m && settling_->updates >= updates) {
     reference_ = answer;
     settling_.reset();
     return true;

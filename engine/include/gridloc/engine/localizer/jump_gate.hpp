@@ -27,6 +27,9 @@ struct JumpGateOptions {
   /// shared buildings one held-out scan from no prior is sometimes `localized` metres off at
   /// confidences the right answers have: engine/doc/tracking.md); false: it passes at once.
   bool settle_first = true;
+  /// ...and passes after settle_m of driving and this many answers (the one from no prior
+  /// and one borne out by the drive: a held-out log's next scan may come 5 m later).
+  int settle_first_updates = 2;
 };
 
 /// Checks the options; throws gridloc::Error naming the field.
