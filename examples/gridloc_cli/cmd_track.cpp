@@ -146,6 +146,13 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
     throw Error("give one of --prior x,y,theta, --prior-from-log or --global");
   }
   if (args.trial_count < 0) throw Error("--trials must be >= 0");
+  const double min_turn_deg = rad2deg(LocalizerOptions{}.min_half_theta);
+  if (!(args.max_window_turn_deg >= min_turn_deg) || !std::isfinite(args.max_window_turn_deg)) {
+    std::ostringstream m;
+    m << "--max-window-turn must be a finite number of degrees >= " << min_turn_deg << ", got "
+      << args.max_window_turn_deg;
+    throw Error(m.str());
+  }
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
   if (!(args.resolution >= 0.0) || !std::isfinite(args.resolution)) {
     std::ostringstream m;

@@ -205,6 +205,8 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --odometry wheels"), {"odometry", "wheels"});
   expect_cli_error(run_cli(dir, base + "--global --odometry odom"), {"ODOM"});
   expect_cli_error(run_cli(dir, base + "--global --every 0"), {"--every"});
+  expect_cli_error(run_cli(dir, base + "--global --max-window-turn -5"),
+                   {"--max-window-turn", "-5"});
   expect_cli_error(run_cli(dir, base + "--global --start 99"), {"--start", "13 scans"});
   expect_cli_error(run_cli(dir, base + "--global --odometry-noise 0.02"), {"--odometry-noise"});
   expect_cli_error(run_cli(dir, base + "--prior 1,x,0"), {"--prior"});
