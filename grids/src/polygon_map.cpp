@@ -15,6 +15,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc {
 namespace {
@@ -22,10 +23,6 @@ namespace {
 /// Bytes of a polygon map file allowed per vertex of limits.max_vertices (a vertex written
 /// with 17 digits and comments takes well under this).
 constexpr double kYamlBytesPerVertex = 256.0;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// Orientation of c relative to the line a -> b: > 0 left, < 0 right, 0 on it.
 double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {

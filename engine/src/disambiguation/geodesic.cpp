@@ -8,6 +8,7 @@
 
 #include "boost_geometry.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc {
 
@@ -28,10 +29,6 @@ struct AreaIndex {
   std::vector<bool> starts_reflex;
   bgw::BoostPolygon polygon;
 };
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
-}
 
 /// The side of p from the line a-b: +1 left, -1 right, 0 on it (within kCollinear).
 int side(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {

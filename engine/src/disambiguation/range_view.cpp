@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc {
 
@@ -18,10 +19,6 @@ constexpr double kVertexTolerance = 1e-9;     // an end this close to an area ve
 constexpr double kMinPieceLength = 1e-9;      // shorter pieces are left out (range_view.hpp)
 constexpr double kOnBoundaryDistance = 1e-9;  // a viewpoint this close to a wall stands on it
 constexpr double kDuplicatePoint = 1e-10;     // visibility polygon vertices merged when closer
-
-double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
-}
 
 /// A monotone stand-in for atan2 with the range [-pi, pi) mapped to [-2, 2): -2 on the -x
 /// axis, rising counter-clockwise. Cheaper than atan2 and exact for equal directions.

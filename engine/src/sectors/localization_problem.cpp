@@ -8,13 +8,10 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc::sectors_detail {
 namespace {
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// How well the map explains the scan at a pose: each return's range (every `stride`-th)
 /// against the range cast along its beam on the polygons, the difference capped, averaged.
@@ -32,9 +29,9 @@ double range_residual(const Problem& problem, const Pose2& pose, int stride) {
     double expected = scan.max_range;
     for (const Wall& wall : problem.walls) {
       const Eigen::Vector2d &e = wall.e, w = wall.a - origin;
-      const double den = cross2(dir, e);
+      const double den = cross(dir, e);
       if (std::abs(den) < 1e-12) continue;  // parallel: not seen
-      const double t = cross2(w, e) / den, u = cross2(w, dir) / den;
+      const double t = cross(w, e) / den, u = cross(w, dir) / den;
       if (t > 0.0 && t < expected && u >= 0.0 && u <= 1.0) expected = t;
     }
     sum += std::min(problem.options.residual_cap_m, std::abs(scan.ranges[i] - expected));

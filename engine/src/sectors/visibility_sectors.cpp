@@ -11,14 +11,11 @@
 #include <numeric>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/sensors/segment_world.hpp"
 
 namespace gridloc {
 namespace {
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// The environment's vertices with, for each, its ring neighbours (free space on the left
 /// of prev -> v -> next), and its edges as vertex index pairs.

@@ -15,7 +15,6 @@
 namespace gridloc::detail {
 namespace {
 
-using team_detail::cross2;
 using team_detail::distance_to_segment;
 
 std::size_t farthest_from(const Polygon& ring, const Eigen::Vector2d& p) {
@@ -107,11 +106,11 @@ Eigen::Vector2d join(const Polygon& ring, const WallPiece& before, const WallPie
   const std::size_t n = ring.size();
   const Eigen::Vector2d gap_start = ring[(before.first + before.steps) % n];
   const Eigen::Vector2d fallback = 0.5 * (gap_start + ring[after.first]);
-  const double denom = cross2(before.direction, after.direction);
+  const double denom = cross(before.direction, after.direction);
   if (std::abs(denom) <= 1e-6) return fallback;  // near parallel: a step, no corner
   const Eigen::Vector2d p =
       before.centre +
-      before.direction * (cross2(after.centre - before.centre, after.direction) / denom);
+      before.direction * (cross(after.centre - before.centre, after.direction) / denom);
   const Eigen::Vector2d before_start = ring[before.first];
   const Eigen::Vector2d after_end = ring[(after.first + after.steps) % n];
   if ((p - before_start).dot(before.direction) <= 0.0 ||

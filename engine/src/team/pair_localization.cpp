@@ -8,8 +8,6 @@
 
 namespace gridloc {
 
-using team_detail::cross2;
-
 void validate(const LinkGateOptions& options) {
   auto require = [](bool ok, const char* message) {
     if (!ok) throw Error(message);
@@ -61,9 +59,9 @@ double best_r(const PoseCandidate& a, const PoseCandidate& b, const Eigen::Vecto
 }
 
 LinkFit fit_crossing(const PoseCandidate& a, const PoseCandidate& b, const Eigen::Vector2d& g) {
-  const double denominator = cross2(a.along, b.along);
+  const double denominator = cross(a.along, b.along);
   LinkFit fit;
-  fit.s = std::clamp(cross2(g, b.along) / denominator, 0.0, a.length);
+  fit.s = std::clamp(cross(g, b.along) / denominator, 0.0, a.length);
   fit.r = best_r(a, b, g, fit.s);
   fit.s = best_s(a, b, g, fit.r);
   fit.residual = fit_residual(a, b, g, fit.s, fit.r);
@@ -88,7 +86,7 @@ LinkFit fit_parallel(const PoseCandidate& a, const PoseCandidate& b, const Eigen
 LinkFit fit_link(const PoseCandidate& a, const PoseCandidate& b, const Eigen::Vector2d& g) {
   LinkFit fit;
   if (a.segment() && b.segment()) {
-    if (std::abs(cross2(a.along, b.along)) > 1e-6) return fit_crossing(a, b, g);
+    if (std::abs(cross(a.along, b.along)) > 1e-6) return fit_crossing(a, b, g);
     return fit_parallel(a, b, g);
   }
   if (a.segment()) fit.s = best_s(a, b, g, 0.0);

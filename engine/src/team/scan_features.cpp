@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "scan_runs.hpp"
 
 namespace gridloc {
@@ -22,10 +23,6 @@ using team_detail::FittedLine;
 using team_detail::RunNeighbour;
 using team_detail::ScanRun;
 using team_detail::WallPiece;
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 void check_option(bool ok, const char* field, const char* rule, double value) {
   if (!ok) {

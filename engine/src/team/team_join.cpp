@@ -11,8 +11,6 @@ namespace gridloc {
 
 namespace {
 
-using team_detail::cross2;
-
 Eigen::Vector2d position(const Pose2& pose) {
   return {pose.x, pose.y};
 }
@@ -48,15 +46,15 @@ std::optional<double> pin(const Eigen::Vector2d& start, const Slide& slide,
 std::optional<Agreement> agree_both_sliding(const Eigen::Vector2d& placed, const Slide& partial,
                                             const Eigen::Vector2d& paired, const Slide& pair,
                                             double tolerance) {
-  const double turn = cross2(partial.direction, pair.direction);
+  const double turn = cross(partial.direction, pair.direction);
   const Eigen::Vector2d gap = paired - placed;
   if (std::abs(turn) > 1e-6) {  // crossing stretches: one meeting point
-    const double t = std::clamp(cross2(gap, pair.direction) / turn, 0.0, partial.length);
+    const double t = std::clamp(cross(gap, pair.direction) / turn, 0.0, partial.length);
     const Eigen::Vector2d point = placed + t * partial.direction;
     if (!pin(paired, pair, point, tolerance)) return std::nullopt;
     return Agreement{t, point, Slide{}};
   }
-  if (std::abs(cross2(partial.direction, gap)) > tolerance) return std::nullopt;
+  if (std::abs(cross(partial.direction, gap)) > tolerance) return std::nullopt;
   const double along = gap.dot(partial.direction);
   const double sign = partial.direction.dot(pair.direction) > 0.0 ? 1.0 : -1.0;
   const double first = std::max(0.0, along + std::min(0.0, sign * pair.length));

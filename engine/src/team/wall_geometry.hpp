@@ -5,12 +5,9 @@
 #include <limits>
 
 #include "gridloc/engine/team/map_features.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc::team_detail {
-
-inline double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 inline double heading_of(const Eigen::Vector2d& v) {
   return std::atan2(v.y(), v.x());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "gridloc/grids/planar.hpp"
 #include "scan_runs.hpp"
 
 namespace gridloc::team_detail {
@@ -16,10 +17,6 @@ namespace {
 struct PieceSpan {
   std::ptrdiff_t begin = 0, end = 0;
 };
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// The point of (begin, end - 1) farthest from the chord through the span's ends, and its
 /// distance; (-1, 0) for a span of fewer than 3 points.
