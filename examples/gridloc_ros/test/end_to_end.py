@@ -147,25 +147,25 @@ def localize_until_ready(localize, not_ready):
     return wait_for("the node to be ready", ready)
 
 
-def check_answer(answer, label):
-    assert answer.success, f"{label}: not localized: {answer.message}"
+def right_pose(answer, label, verdict):
+    """The answer's JSON pose, checked: `verdict`, within 10 cm and 7 degrees of the truth."""
     pose = json.loads(answer.message)
     off_m = math.hypot(pose["x"] - TRUTH[0], pose["y"] - TRUTH[1])
     off_deg = abs(math.degrees(math.remainder(pose["theta"] - TRUTH[2], 2 * math.pi)))
-    assert pose["verdict"] == "localized", f"{label}: {pose}"
+    assert pose["verdict"] == verdict, f"{label}: {pose}"
     assert off_m <= 0.10 and off_deg <= 7.0, f"{label}: {off_m:.3f} m {off_deg:.1f} deg off: {pose}"
-    print(f"{label}: localized {off_m * 100:.1f} cm {off_deg:.2f} deg from the truth")
+    return f"{off_m * 100:.1f} cm {off_deg:.2f} deg from the truth"
+
+
+def check_answer(answer, label):
+    assert answer.success, f"{label}: not localized: {answer.message}"
+    print(f"{label}: localized {right_pose(answer, label, 'localized')}")
 
 
 def check_guess(answer, label):
     """A first place from no prior, not yet borne out by a drive: right, `not localized`."""
     assert not answer.success, f"{label}: localized from one scan: {answer.message}"
-    pose = json.loads(answer.message)
-    off_m = math.hypot(pose["x"] - TRUTH[0], pose["y"] - TRUTH[1])
-    off_deg = abs(math.degrees(math.remainder(pose["theta"] - TRUTH[2], 2 * math.pi)))
-    assert pose["verdict"] == "not localized", f"{label}: {pose}"
-    assert off_m <= 0.10 and off_deg <= 7.0, f"{label}: {off_m:.3f} m {off_deg:.1f} deg off: {pose}"
-    print(f"{label}: not localized yet (confirming), {off_m * 100:.1f} cm {off_deg:.2f} deg from the truth")
+    print(f"{label}: not localized yet (confirming), {right_pose(answer, label, 'not localized')}")
 
 
 def simulate(gridloc, maps, extra):
