@@ -393,8 +393,7 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
                                                    // once more, twice as wide
     window.half_xy =
         std::min(2.0 * window.half_xy, std::max(options_.max_half_xy_m, window.half_xy));
-    window.half_theta =
-        std::min(2.0 * window.half_theta, std::min(options_.max_half_theta, std::numbers::pi));
+    window.half_theta = std::min(2.0 * window.half_theta, max_window_turn());
     e = search_window(observation, window, covariance);
   }
   place(hypothesis, e, observation, global);

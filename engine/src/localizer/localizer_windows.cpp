@@ -64,6 +64,10 @@ double Localizer::posterior(const Estimate& e, const PlacePrior& prior) const {
          log_prior(e.pose, prior.carried, prior.covariance, prior.floor);
 }
 
+double Localizer::max_window_turn() const {
+  return std::min(options_.max_half_theta, std::numbers::pi);
+}
+
 bool Localizer::coarse_contains(const Pose2& pose) const {
   const PaddedGrid& grid = coarse_->level(0);
   const double cell = coarse_->options().resolution;
@@ -115,10 +119,9 @@ SearchWindow Localizer::window_around(const TrackedHypothesis& hypothesis,
   window.half_xy = std::clamp(options_.prior_sigmas * sigma_xy,
                               std::min(widen * options_.min_half_xy_m, options_.max_half_xy_m),
                               options_.max_half_xy_m);
-  const double max_half_theta = std::min(options_.max_half_theta, std::numbers::pi);
   window.half_theta =
       std::clamp(options_.prior_sigmas * std::sqrt(covariance(2, 2)),
-                 std::min(widen * options_.min_half_theta, max_half_theta), max_half_theta);
+                 std::min(widen * options_.min_half_theta, max_window_turn()), max_window_turn());
   return window;
 }
 

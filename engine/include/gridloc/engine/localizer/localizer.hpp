@@ -254,6 +254,8 @@ class Localizer {
   double posterior(const Estimate& e, const PlacePrior& prior) const;
   /// Whether a world pose lies on the map's grid.
   bool on_map(const Pose2& pose) const;
+  /// The most a window spans either way of a place's heading: max_half_theta, at most pi.
+  double max_window_turn() const;
   /// Whether a window centred at `pose` lies on the coarse copy's grid.
   bool coarse_contains(const Pose2& pose) const;
   /// A coarse window's peaks apart from `chosen` and scoring split_ratio of its best, each
