@@ -98,6 +98,40 @@ TEST(BoundPyramid, ATernaryGridKeepsItsLevelsAsInt8Only) {
   }
 }
 
+// Max-pooled levels only: the arc view's levels as before, and one level of the grid's
+// minimum standing for every min-pooled level (memory and pooling halved for a laser's hits).
+TEST(BoundPyramid, MaxOnlyKeepsOneLevelOfTheGridsMinimum) {
+  std::mt19937 rng(13);
+  for (GridKind kind : {GridKind::Ternary, GridKind::Floats}) {
+    const EvidenceGrid g = make_grid(rng, 10, 8, kind);
+    const PaddedGrid padded = pad_grid(g, 2, ArcRule::Neutral);
+    const BoundPyramid both = make_bound_pyramid(padded, 3);
+    const BoundPyramid p = make_bound_pyramid(padded, 3, PyramidLevels::MaxOnly);
+    EXPECT_TRUE(both.min_levels);
+    EXPECT_FALSE(p.min_levels);
+    ASSERT_EQ(p.depth(), 3);
+    EXPECT_EQ(p.min_level(3), 1u);
+    EXPECT_EQ(p.grid_min_all, both.grid_min_all);
+    EXPECT_EQ(p.arc_max8, both.arc_max8);
+    const std::size_t cells = padded.grid.cells.size();
+    if (p.has_int8()) {
+      ASSERT_EQ(p.grid_min8.size(), 2u);  // level 0 (the grid) and the minimum's level
+      EXPECT_EQ(p.grid_min8[0], both.grid_min8[0]);
+      for (std::size_t k = 0; k < cells; ++k) {
+        EXPECT_EQ(p.grid_min8[1][k], static_cast<std::int8_t>(p.grid_min_all));
+      }
+    }
+    for (int level = 1; level <= 3; ++level) {
+      const auto l = static_cast<std::size_t>(level);
+      EXPECT_EQ(p.arc_max[l].cells, both.arc_max[l].cells);
+      EXPECT_EQ(p.grid_min[l].cells.empty(), level > 1 || p.ternary()) << level;
+    }
+    if (!p.ternary()) {
+      for (float v : p.grid_min[1].cells) EXPECT_EQ(v, p.grid_min_all);
+    }
+  }
+}
+
 TEST(BoundDepthFor, CoversTheLatticeInOneBlock) {
   Lattice lat;
   lat.x0 = 3, lat.x1 = 3, lat.y0 = 5, lat.y1 = 5;
@@ -122,18 +156,20 @@ TEST(BlockBound, BoundsEveryPoseOfItsBlockExactly) {
     for (ArcRule rule : kRules) {
       const PaddedGrid padded = pad_grid(g, extent + uniform_int(rng, 0, 2), rule);
       const PlacedLocalGrid placed = place(l, padded);
-      const BoundPyramid p = make_bound_pyramid(padded, 4);
-      for (int level = 1; level <= 4; ++level) {
-        const int side = 1 << level;
-        for (int by = 0; by < h; ++by) {
-          for (int bx = 0; bx < w; ++bx) {
-            const double bound = block_bound(p, placed, level, bx, by);
-            for (int y = by; y < std::min(h, by + side); ++y) {
-              for (int x = bx; x < std::min(w, bx + side); ++x) {
-                ASSERT_GE(bound, score(padded, placed, x, y))
-                    << "case " << c << " level " << level << " block (" << bx << ", " << by
-                    << ") pose (" << x << ", " << y << ")";
-                ++checked;
+      for (PyramidLevels levels : {PyramidLevels::MaxAndMin, PyramidLevels::MaxOnly}) {
+        const BoundPyramid p = make_bound_pyramid(padded, 4, levels);
+        for (int level = 1; level <= 4; ++level) {
+          const int side = 1 << level;
+          for (int by = 0; by < h; ++by) {
+            for (int bx = 0; bx < w; ++bx) {
+              const double bound = block_bound(p, placed, level, bx, by);
+              for (int y = by; y < std::min(h, by + side); ++y) {
+                for (int x = bx; x < std::min(w, bx + side); ++x) {
+                  ASSERT_GE(bound, score(padded, placed, x, y))
+                      << "case " << c << " level " << level << " block (" << bx << ", " << by
+                      << ") pose (" << x << ", " << y << ") min levels " << p.min_levels;
+                  ++checked;
+                }
               }
             }
           }
@@ -141,7 +177,7 @@ TEST(BlockBound, BoundsEveryPoseOfItsBlockExactly) {
       }
     }
   }
-  EXPECT_GT(checked, 100000);
+  EXPECT_GT(checked, 200000);
 }
 
 }  // namespace

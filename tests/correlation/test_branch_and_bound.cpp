@@ -86,17 +86,20 @@ TEST(SearchBranchAndBound, EqualsExhaustiveOnRandomCases) {
     const int depth = uniform_int(rng, 0, bound_depth_for(lat) + 1);
     for (ArcRule rule : kRules) {
       const PaddedGrid padded = pad_grid(g, extent + uniform_int(rng, 0, 2), rule);
-      const BoundPyramid pyramid = make_bound_pyramid(padded, depth);
-      const std::string what = "case " + std::to_string(c) + " rule " +
-                               std::to_string(static_cast<int>(rule)) + " depth " +
-                               std::to_string(depth);
-      SearchLevel level = level_of(padded, locals);
-      level.threads = c % 3 == 0 ? 2 : 1;  // results never depend on it
-      expect_same_as_exhaustive(lat, level, pyramid, what);
-      ++compared;
+      // Without min levels the negative cells bound by the grid's minimum: looser, as exact.
+      for (PyramidLevels levels : {PyramidLevels::MaxAndMin, PyramidLevels::MaxOnly}) {
+        const BoundPyramid pyramid = make_bound_pyramid(padded, depth, levels);
+        const std::string what =
+            "case " + std::to_string(c) + " rule " + std::to_string(static_cast<int>(rule)) +
+            " depth " + std::to_string(depth) + " min levels " + std::to_string(pyramid.min_levels);
+        SearchLevel level = level_of(padded, locals);
+        level.threads = c % 3 == 0 ? 2 : 1;  // results never depend on it
+        expect_same_as_exhaustive(lat, level, pyramid, what);
+        ++compared;
+      }
     }
   }
-  EXPECT_EQ(compared, 800);
+  EXPECT_EQ(compared, 1600);
 }
 
 TEST(SearchBranchAndBound, ExclusionGivesTheBestPoseOutsideIt) {

@@ -39,7 +39,7 @@ EvidenceGrid geometry_only(const EvidenceGrid& grid) {
 
 }  // namespace
 
-BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
+BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLevels levels) {
   if (depth < 0 || depth > kMaxDepth) {
     throw Error("bound pyramid: depth = " + std::to_string(depth) + " must lie in [0, " +
                 std::to_string(kMaxDepth) + "]");
@@ -48,6 +48,7 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
     throw Error("bound pyramid: the padded grid's arc_view does not match its grid");
   }
   BoundPyramid p;
+  p.min_levels = levels == PyramidLevels::MaxAndMin;
   p.pad = global.pad;
   p.width = global.width;
   p.height = global.height;
@@ -70,19 +71,22 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth) {
   // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): its
   // levels are pooled in place in two working grids, kept as int8 only (5x less memory, and
   // no page of a new grid to fault in per level); other pyramids keep each float level.
+  // Without min levels, level 1 holds the whole grid's minimum and stands for every level.
   const bool keep_floats = !p.ternary();
   EvidenceGrid arc_work = std::move(arc), min_work = global.grid;
+  if (!p.min_levels) min_work.cells.assign(min_work.cells.size(), p.grid_min_all);
   for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
     const auto l = static_cast<std::size_t>(h);
     const int half = 1 << (h - 1);
+    const bool own_min = p.min_levels || h == 1;
     max_pool_doubled_in_place(arc_work, half);
-    min_pool_doubled_in_place(min_work, half);
+    if (p.min_levels) min_pool_doubled_in_place(min_work, half);
     if (int8) {
       p.arc_max8.push_back(to_int8(arc_work));
-      p.grid_min8.push_back(to_int8(min_work));
+      if (own_min) p.grid_min8.push_back(to_int8(min_work));
     }
     p.arc_max[l] = keep_floats ? arc_work : geometry_only(arc_work);
-    p.grid_min[l] = keep_floats ? min_work : geometry_only(min_work);
+    p.grid_min[l] = keep_floats && own_min ? min_work : geometry_only(min_work);
   }
   return p;
 }

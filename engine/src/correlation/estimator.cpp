@@ -304,7 +304,11 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     int depth = 0;
     while ((1 << depth) < std::max(finest.width, finest.height)) ++depth;
     ++depth;  // heading intervals widen blocks up to twice their side
-    pyramid_ = make_bound_pyramid(finest, depth);
+    // A laser's hits score only positive cells: no bound reads a min-pooled level (an
+    // observation bringing its own ring still gets a valid, looser bound).
+    const bool positive_only = ring_.sonars.empty() && options_.scan.model == ScanModel::Hits;
+    pyramid_ = make_bound_pyramid(
+        finest, depth, positive_only ? PyramidLevels::MaxOnly : PyramidLevels::MaxAndMin);
   }
 }
 

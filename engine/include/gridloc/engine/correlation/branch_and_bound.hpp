@@ -48,15 +48,27 @@ struct BoundPyramid {
   /// int8 levels of a grid whose values are all -1, 0 or 1.
   bool ternary() const { return has_int8() && int8_scale == 1.0f; }
 
+  /// Whether grid_min holds each level's min-pooled grid. Without them (a search whose local
+  /// grids are all positive, a scan's hits, reads none) every level above 0 is one grid of
+  /// grid_min_all, a looser bound that still holds: grid_min[1] and grid_min8[1].
+  bool min_levels = true;
+
   /// The top level h (0 when only level 0 exists).
   int depth() const { return static_cast<int>(arc_max.size()) - 1; }
+  /// The level the negative cells of a bound at level h read (h >= 1).
+  std::size_t min_level(int h) const { return min_levels ? static_cast<std::size_t>(h) : 1; }
 };
+
+/// Which grids a bound pyramid pools: both, or only the max-pooled arc view (then the
+/// negative cells of a bound read the whole grid's minimum; BoundPyramid::min_levels).
+enum class PyramidLevels { MaxAndMin, MaxOnly };
 
 /// Builds levels 1..depth of `global`'s bound pyramid (depth >= 0; throws gridloc::Error
 /// otherwise), O(padded cells) per level. Needs no padding beyond what score() needs
 /// (pad >= the local grids' extent), whatever the depth: the search only makes blocks that
 /// start inside the lattice, and the pooled windows are clipped at the padded grid's edge.
-BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth);
+BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth,
+                                PyramidLevels levels = PyramidLevels::MaxAndMin);
 
 /// The smallest depth whose top-level blocks cover the lattice's translations in one block
 /// per heading: ceil(log2(max(columns, rows))); a deeper pyramid adds nothing for it.
@@ -76,11 +88,11 @@ inline double block_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& lo
   // score() reads int8 copies scaled by 1 / s only for fixed-point local grids: so here.
   if (pyramid.has_int8() && (pyramid.int8_scale == 1.0f || local.fixed_shift >= 0)) {
     return correlate(pyramid.arc_max8[level].data() + origin,
-                     pyramid.grid_min8[level].data() + origin, local) /
+                     pyramid.grid_min8[pyramid.min_level(h)].data() + origin, local) /
            static_cast<double>(pyramid.int8_scale);
   }
-  return correlate(arc_grid.cells.data() + origin, pyramid.grid_min[level].cells.data() + origin,
-                   local);
+  return correlate(arc_grid.cells.data() + origin,
+                   pyramid.grid_min[pyramid.min_level(h)].cells.data() + origin, local);
 }
 
 /// Poses left out of a search: those within `radius_cells` (Euclidean, in cells) and
