@@ -14,11 +14,17 @@ namespace {
 // (no NaN) it equals apply.
 struct Max {
   static float apply(float a, float b) { return std::max(a, b); }
-  static float packed(float a, float b) { return a > b ? a : b; }
+  template <typename T>
+  static T packed(T a, T b) {
+    return a > b ? a : b;
+  }
 };
 struct Min {
   static float apply(float a, float b) { return std::min(a, b); }
-  static float packed(float a, float b) { return a < b ? a : b; }
+  template <typename T>
+  static T packed(T a, T b) {
+    return a < b ? a : b;
+  }
 };
 
 void check_size(int size, const char* what) {
@@ -130,19 +136,24 @@ Grid<float> pool_reference(const Grid<float>& g, int size) {
 /// 0 and s on each axis (those starting past the grid's edge are empty and skipped), so this
 /// is exact. Each pass is an elementwise Op of two contiguous runs, which the compiler turns
 /// into packed min/max instructions (MAXPS/MINPS with SSE2; see pool_doubled's test).
-template <class Op>
-void pool_doubled_in_place(Grid<float>& grid, int s) {
-  const int w = grid.width(), h = grid.height();
+template <class Op, typename T>
+void pool_doubled_in_place(T* cells, int w, int h, int s) {
+  const auto row = [&](int y) { return cells + static_cast<std::ptrdiff_t>(y) * w; };
   // Both passes read only cells they have not written yet (x + s and row y + s lie ahead).
   for (int y = 0; y < h; ++y) {
-    float* o = grid.row(y);
+    T* o = row(y);
     for (int x = 0; x + s < w; ++x) o[x] = Op::packed(o[x], o[x + s]);
   }
   for (int y = 0; y + s < h; ++y) {
-    float* o = grid.row(y);
-    const float* b = grid.row(y + s);
+    T* o = row(y);
+    const T* b = row(y + s);
     for (int x = 0; x < w; ++x) o[x] = Op::packed(o[x], b[x]);
   }
+}
+
+template <class Op>
+void pool_doubled_in_place(Grid<float>& grid, int s) {
+  pool_doubled_in_place<Op>(grid.cells.data(), grid.width(), grid.height(), s);
 }
 
 template <class Op>
@@ -172,6 +183,16 @@ void max_pool_doubled_in_place(Grid<float>& pooled, int size) {
 void min_pool_doubled_in_place(Grid<float>& pooled, int size) {
   check_size(size, "min_pool_doubled_in_place");
   pool_doubled_in_place<Min>(pooled, size);
+}
+
+void max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size) {
+  check_size(size, "max_pool_doubled_in_place");
+  pool_doubled_in_place<Max>(cells, width, height, size);
+}
+
+void min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size) {
+  check_size(size, "min_pool_doubled_in_place");
+  pool_doubled_in_place<Min>(cells, width, height, size);
 }
 
 Grid<float> max_pool(const Grid<float>& g, int size) {

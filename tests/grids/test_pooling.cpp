@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "gridloc/grids/error.hpp"
 #include "random_cases.hpp"
@@ -96,6 +98,31 @@ TEST(Pooling, DoubledEqualsReferenceOnRandomGrids) {
   EXPECT_THROW(max_pool_doubled(Grid<float>(geo, 0.0f), 0), Error);
   Grid<float> zero(geo, 0.0f);
   EXPECT_THROW(min_pool_doubled_in_place(zero, 0), Error);
+}
+
+// int8 cells pooled in place equal the float reference's pooled values, whole numbers in
+// [-127, 127] as a bound pyramid's int8 levels hold them.
+TEST(Pooling, DoubledInt8EqualsReferenceOnRandomGrids) {
+  std::mt19937 rng(78);
+  for (int c = 0; c < 200; ++c) {
+    const int w = uniform_int(rng, 1, 70), h = uniform_int(rng, 1, 50);
+    GridGeometry geo;
+    geo.width = w;
+    geo.height = h;
+    Grid<float> g(geo, 0.0f);
+    for (float& v : g.cells) v = static_cast<float>(uniform_int(rng, -127, 127));
+    std::vector<std::int8_t> mx(g.cells.begin(), g.cells.end()), mn = mx;
+    for (int size = 1; size <= 64; size *= 2) {
+      max_pool_doubled_in_place(mx.data(), w, h, size);
+      min_pool_doubled_in_place(mn.data(), w, h, size);
+      const Grid<float> hi = max_pool_reference(g, 2 * size), lo = min_pool_reference(g, 2 * size);
+      const std::string what = "case " + std::to_string(c) + " size " + std::to_string(size);
+      EXPECT_EQ(std::vector<float>(mx.begin(), mx.end()), hi.cells) << what;
+      EXPECT_EQ(std::vector<float>(mn.begin(), mn.end()), lo.cells) << what;
+    }
+  }
+  std::int8_t cell = 0;
+  EXPECT_THROW(max_pool_doubled_in_place(&cell, 1, 1, 0), Error);
 }
 
 TEST(Pooling, KeepsTheGeometry) {

@@ -16,10 +16,6 @@ namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
 
-}  // namespace
-
-namespace {
-
 /// BoundPyramid::arc_max_all, grid_min_all and abs_max of the level-0 grids.
 void fill_extremes(BoundPyramid& p, const std::vector<float>& arc, const std::vector<float>& grid) {
   if (!arc.empty()) {
@@ -35,6 +31,55 @@ EvidenceGrid geometry_only(const EvidenceGrid& grid) {
   EvidenceGrid shell;
   shell.geometry = grid.geometry;
   return shell;
+}
+
+/// Levels 1..depth of a ternary pyramid, each pooled from the one below as int8: its bounds
+/// read nothing else, so no float level is made (pooling commutes with the exact int8 map).
+void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
+  const int w = global.grid.width(), h = global.grid.height();
+  const std::size_t cells = global.grid.cells.size();
+  for (int level = 1; level <= depth; ++level) {
+    const int half = 1 << (level - 1);
+    std::vector<std::int8_t> arc = p.arc_max8.back();
+    max_pool_doubled_in_place(arc.data(), w, h, half);
+    p.arc_max8.push_back(std::move(arc));
+    if (p.min_levels) {
+      std::vector<std::int8_t> min = p.grid_min8.back();
+      min_pool_doubled_in_place(min.data(), w, h, half);
+      p.grid_min8.push_back(std::move(min));
+    } else if (level == 1) {  // the grid's minimum, standing for every level
+      std::vector<std::int8_t> min = p.grid_min8.front();
+      std::fill_n(min.begin(), cells, static_cast<std::int8_t>(p.grid_min_all));
+      p.grid_min8.push_back(std::move(min));
+    }
+    const auto l = static_cast<std::size_t>(level);
+    p.arc_max[l] = geometry_only(global.grid);
+    p.grid_min[l] = geometry_only(global.grid);
+  }
+}
+
+/// Levels 1..depth pooled as floats, each kept (and its int8 copy when `int8`).
+void pool_float_levels(BoundPyramid& p, const PaddedGrid& global, int depth, bool int8) {
+  const auto to_int8 = [&p](const EvidenceGrid& g) {
+    return to_int8_with_slack(g.cells, p.int8_scale);
+  };
+  EvidenceGrid arc_work = global.grid, min_work = global.grid;
+  arc_work.cells = global.arc_view;
+  // Without min levels, level 1 holds the whole grid's minimum and stands for every level.
+  if (!p.min_levels) min_work.cells.assign(min_work.cells.size(), p.grid_min_all);
+  for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
+    const auto l = static_cast<std::size_t>(h);
+    const int half = 1 << (h - 1);
+    const bool own_min = p.min_levels || h == 1;
+    max_pool_doubled_in_place(arc_work, half);
+    if (p.min_levels) min_pool_doubled_in_place(min_work, half);
+    if (int8) {
+      p.arc_max8.push_back(to_int8(arc_work));
+      if (own_min) p.grid_min8.push_back(to_int8(min_work));
+    }
+    p.arc_max[l] = arc_work;
+    p.grid_min[l] = own_min ? min_work : geometry_only(min_work);
+  }
 }
 
 }  // namespace
@@ -54,39 +99,22 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
   p.height = global.height;
   p.arc_max.resize(static_cast<std::size_t>(depth) + 1);
   p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
-  EvidenceGrid arc = global.grid;  // arc_view with the padded geometry
-  arc.cells = global.arc_view;
-  fill_extremes(p, arc.cells, global.grid.cells);
+  fill_extremes(p, global.arc_view, global.grid.cells);
   // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
-  const float scale = int8_scale_for(global.grid.cells), arc_scale = int8_scale_for(arc.cells);
+  const float scale = int8_scale_for(global.grid.cells);
+  const float arc_scale = int8_scale_for(global.arc_view);
   const bool int8 = scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale;
-  const auto to_int8 = [scale](const EvidenceGrid& g) {
-    return to_int8_with_slack(g.cells, scale);
-  };
   if (int8) {
     p.int8_scale = scale;
-    p.arc_max8.push_back(to_int8(arc));
-    p.grid_min8.push_back(to_int8(global.grid));
+    p.arc_max8.push_back(to_int8_with_slack(global.arc_view, scale));
+    p.grid_min8.push_back(to_int8_with_slack(global.grid.cells, scale));
   }
-  // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): its
-  // levels are pooled in place in two working grids, kept as int8 only (5x less memory, and
-  // no page of a new grid to fault in per level); other pyramids keep each float level.
-  // Without min levels, level 1 holds the whole grid's minimum and stands for every level.
-  const bool keep_floats = !p.ternary();
-  EvidenceGrid arc_work = std::move(arc), min_work = global.grid;
-  if (!p.min_levels) min_work.cells.assign(min_work.cells.size(), p.grid_min_all);
-  for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
-    const auto l = static_cast<std::size_t>(h);
-    const int half = 1 << (h - 1);
-    const bool own_min = p.min_levels || h == 1;
-    max_pool_doubled_in_place(arc_work, half);
-    if (p.min_levels) min_pool_doubled_in_place(min_work, half);
-    if (int8) {
-      p.arc_max8.push_back(to_int8(arc_work));
-      if (own_min) p.grid_min8.push_back(to_int8(min_work));
-    }
-    p.arc_max[l] = keep_floats ? arc_work : geometry_only(arc_work);
-    p.grid_min[l] = keep_floats && own_min ? min_work : geometry_only(min_work);
+  // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): 5x
+  // less memory than float levels, and no page of a float grid to fault in per level.
+  if (p.ternary()) {
+    pool_int8_levels(p, global, depth);
+  } else {
+    pool_float_levels(p, global, depth, int8);
   }
   return p;
 }

@@ -1,6 +1,8 @@
 #pragma once
 /// Max / min pooling of a grid over square blocks: the bound grids of an exact
 /// branch-and-bound search (DESIGN.md, "Global grid").
+#include <cstdint>
+
 #include "gridloc/grids/grid.hpp"
 
 namespace gridloc {
@@ -24,6 +26,11 @@ Grid<float> min_pool_doubled(const Grid<float>& pooled, int size);
 void max_pool_doubled_in_place(Grid<float>& pooled, int size);
 /// As max_pool_doubled_in_place, with the minimum.
 void min_pool_doubled_in_place(Grid<float>& pooled, int size);
+/// The same on int8 cells (row-major, `width` x `height`): pooling commutes with any
+/// increasing map of the values, so pooled int8 copies of a grid equal int8 copies of its
+/// pooled grid (how a bound pyramid kept as int8 is built without float levels).
+void max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size);
+void min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size);
 
 /// Plain O(cells * size^2) loops computing what max_pool does: the oracle for tests.
 Grid<float> max_pool_reference(const Grid<float>& g, int size);
