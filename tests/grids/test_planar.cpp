@@ -1,10 +1,13 @@
 // Tests of grids/include/gridloc/grids/planar.hpp against brute force: the 2-D cross product
-// is the z of the 3-D one, antisymmetric, and its sign says which way b turns from a.
+// is the z of the 3-D one, antisymmetric, and its sign says which way b turns from a; the
+// distance to a segment is that of its nearest point.
 #include "gridloc/grids/planar.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
 #include <random>
 
 namespace gridloc {
@@ -27,6 +30,29 @@ TEST(Planar, CrossIsPositiveCounterClockwise) {
   EXPECT_EQ(cross(east, north), 1.0);
   EXPECT_EQ(cross(north, east), -1.0);
   EXPECT_EQ(cross(Eigen::Vector2d(2.0, 0.0), Eigen::Vector2d(3.0, 4.0)), 8.0);  // the area
+}
+
+// The distance to a segment against brute force: the nearest of many points along it.
+TEST(Planar, DistanceToSegmentIsTheNearestPointOfIt) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> value(-10.0, 10.0);
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Vector2d p(value(rng), value(rng)), a(value(rng), value(rng));
+    const Eigen::Vector2d b = k % 10 == 0 ? a : Eigen::Vector2d(value(rng), value(rng));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 20000; ++i) {
+      nearest = std::min(nearest, (a + (i / 20000.0) * (b - a) - p).norm());
+    }
+    const double d = distance_to_segment(p, a, b);
+    EXPECT_LE(d, nearest + 1e-12) << k;
+    EXPECT_NEAR(d, nearest, 2e-3) << k;  // the sampled point is at most half a step off
+    EXPECT_DOUBLE_EQ(squared_distance_to_segment(p, a, b), d * d) << k;
+  }
+  const Eigen::Vector2d a(0.0, 0.0), b(4.0, 0.0);
+  EXPECT_EQ(distance_to_segment({2.0, 3.0}, a, b), 3.0);   // above the middle
+  EXPECT_EQ(distance_to_segment({-3.0, 4.0}, a, b), 5.0);  // beyond an end
+  EXPECT_EQ(distance_to_segment({7.0, 4.0}, a, b), 5.0);
+  EXPECT_EQ(distance_to_segment({3.0, 4.0}, a, a), 5.0);  // a point
 }
 
 }  // namespace

@@ -40,18 +40,6 @@ struct ViewerFrame {
   }
 };
 
-/// The squared distance from p to the segment a-b (one division at most).
-double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                                   const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a, w = p - a;
-  const double along = w.dot(d);
-  if (along <= 0.0) return w.squaredNorm();
-  const double length2 = d.squaredNorm();
-  if (along >= length2) return (p - b).squaredNorm();
-  const double off = cross(d, w);
-  return off * off / length2;
-}
-
 /// Whether the segment a-b lies wholly on one side outside the square of half-side `range`
 /// about p (then it is farther than `range` from p): a cheap first filter.
 bool beyond_box(const Eigen::Vector2d& p, double range, const Eigen::Vector2d& a,

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/sensors/scan_disturbances.hpp"
 #include "seeds.hpp"
 
@@ -25,11 +26,8 @@ double median(std::vector<double> v) {
 
 double distance_to_walls(const PolygonMap& map, const Eigen::Vector2d& p) {
   double distance = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : polygon_edges(map)) {
-    const Eigen::Vector2d e = b - a;
-    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    distance = std::min(distance, (a + t * e - p).norm());
-  }
+  for (const auto& [a, b] : polygon_edges(map))
+    distance = std::min(distance, distance_to_segment(p, a, b));
   return distance;
 }
 

@@ -6,16 +6,10 @@
 #include <numbers>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc {
 namespace {
-
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
 
 /// True when robot-frame point p is inside the footprint or within `clearance` of it.
 bool near_footprint(const Footprint& footprint, const Eigen::Vector2d& p, double clearance) {
@@ -23,7 +17,7 @@ bool near_footprint(const Footprint& footprint, const Eigen::Vector2d& p, double
   if (footprint_contains(footprint, p)) return true;
   const std::vector<Eigen::Vector2d>& polygon = footprint.polygon;
   for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    if (segment_distance(p, polygon[j], polygon[i]) <= clearance) return true;
+    if (distance_to_segment(p, polygon[j], polygon[i]) <= clearance) return true;
   }
   return false;
 }

@@ -15,8 +15,6 @@
 namespace gridloc::detail {
 namespace {
 
-using team_detail::distance_to_segment;
-
 std::size_t farthest_from(const Polygon& ring, const Eigen::Vector2d& p) {
   std::size_t best = 0;
   for (std::size_t i = 1; i < ring.size(); ++i) {

@@ -21,10 +21,6 @@ inline Eigen::Vector2d wall_direction(const MapWall& wall) {
   return (wall.b - wall.a).normalized();
 }
 
-/// Distance from p to the segment a-b.
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                           const Eigen::Vector2d& b);
-
 /// Whether the open segments p-q and a-b cross or touch (p, q strictly inside the test).
 bool segments_meet(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& a,
                    const Eigen::Vector2d& b);
