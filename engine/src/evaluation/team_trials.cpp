@@ -6,6 +6,7 @@
 
 #include "gridloc/engine/evaluation/team_protocol.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/sensors/rng.hpp"
 
 namespace gridloc {
@@ -41,11 +42,8 @@ bool in_free_cell(const OccupancyMap& grid, const Eigen::Vector2d& p) {
 
 double wall_distance(const MapFeatures& map, const Eigen::Vector2d& p) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const MapWall& wall : map.walls) {
-    const Eigen::Vector2d ab = wall.b - wall.a;
-    const double t = std::clamp((p - wall.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    nearest = std::min(nearest, (wall.a + t * ab - p).norm());
-  }
+  for (const MapWall& wall : map.walls)
+    nearest = std::min(nearest, distance_to_segment(p, wall.a, wall.b));
   return nearest;
 }
 

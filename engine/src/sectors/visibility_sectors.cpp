@@ -378,9 +378,7 @@ void mark_turned_twins(std::vector<Sector>& sectors) {
 double wall_distance(const Geometry& geometry, const Eigen::Vector2d& p) {
   double wall = std::numeric_limits<double>::infinity();
   for (const auto& [i, j] : geometry.edges) {
-    const Eigen::Vector2d e = geometry.vertices[j] - geometry.vertices[i];
-    const double t = std::clamp((p - geometry.vertices[i]).dot(e) / e.squaredNorm(), 0.0, 1.0);
-    wall = std::min(wall, (geometry.vertices[i] + t * e - p).norm());
+    wall = std::min(wall, distance_to_segment(p, geometry.vertices[i], geometry.vertices[j]));
   }
   return wall;
 }
