@@ -19,6 +19,7 @@
 #include "gridloc/sensors/log_split.hpp"
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "localization_args.hpp"
 #include "options.hpp"
 #include "progress.hpp"
 #include "stdin_input.hpp"
@@ -31,6 +32,10 @@ namespace {
 struct TrackArgs {
   std::string map, log, prior, odometry = "laser", odometry_noise, raw_odometry;
   std::string odometry_error = "0.05,5";
+  /// --global-grid and --field-*: by default the laser tracking grid
+  /// (with_laser_tracking_grid).
+  std::string global_grid = "field";
+  FieldArgs field{with_laser_tracking_grid({}).field};
   std::string plot;  ///< --plot FILE.png
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
@@ -169,6 +174,8 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
   options.localizer.localized_fit_ratio = args.localized_fit_ratio;
+  options.localizer.correlation.global = parse_global(args.global_grid);
+  args.field.apply(options.localizer.correlation);
   options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.resolution = args.search_resolution;
@@ -350,6 +357,11 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--evidence-per-scan", args.evidence_per_scan,
                   "log-likelihood per unit of a window's normalized score")
       ->capture_default_str();
+  cmd->add_option("--global-grid", args.global_grid,
+                  "the map's grid the scans are matched on: field (likelihood field, see "
+                  "--field-sigma) | thinned | raw")
+      ->capture_default_str();
+  args.field.add_to(cmd);
   cmd->add_option("--localized-fit-ratio", args.localized_fit_ratio,
                   "a window scoring below this share of its place's usual normalized score is "
                   "not localized (0: no such rule)")

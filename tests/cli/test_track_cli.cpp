@@ -84,6 +84,17 @@ TEST_F(TrackCli, FromAPriorEveryScanIsTrackedWithTheContractsFields) {
   EXPECT_EQ(steps.back()["index"].get<int>(), 12);
 }
 
+// The default grid is the laser tracking field (with_laser_tracking_grid); the contour-thinned
+// grid of seed 001 tracks the same drive.
+TEST_F(TrackCli, OnTheThinnedGridEveryScanIsTrackedToo) {
+  const std::vector<nlohmann::json> steps = track("--prior 8.55,2.45,0.02 --global-grid thinned");
+  ASSERT_EQ(steps.size(), corridor_drive().size());
+  for (const nlohmann::json& step : steps) {
+    EXPECT_LE(step["error_m"].get<double>(), 0.10) << step.dump();
+    EXPECT_LE(step["error_deg"].get<double>(), 2.0) << step.dump();
+  }
+}
+
 TEST_F(TrackCli, GloballyTheDriveFavoursTheTruthWithoutAWrongAnswer) {
   // A 3 m front laser in a corridor of look-alikes: the drive's scans fused into one view.
   const std::vector<nlohmann::json> steps =
@@ -207,6 +218,9 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --every 0"), {"--every"});
   expect_cli_error(run_cli(dir, base + "--global --max-window-turn -5"),
                    {"--max-window-turn", "-5"});
+  expect_cli_error(run_cli(dir, base + "--global --global-grid fog"), {"--global-grid", "fog"});
+  expect_cli_error(run_cli(dir, base + "--global --global-grid field --field-sigma -1"),
+                   {"--field-sigma"});
   expect_cli_error(run_cli(dir, base + "--global --start 99"), {"--start", "13 scans"});
   expect_cli_error(run_cli(dir, base + "--global --odometry-noise 0.02"), {"--odometry-noise"});
   expect_cli_error(run_cli(dir, base + "--prior 1,x,0"), {"--prior"});

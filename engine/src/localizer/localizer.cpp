@@ -150,6 +150,14 @@ const CorrelationEstimator& Localizer::search_estimator(bool first) const {
   return coarse ? *coarse_ : estimator_;
 }
 
+CorrelationOptions with_laser_tracking_grid(CorrelationOptions options) {
+  options.global = GlobalModel::LikelihoodField;
+  options.field.sigma_m = 0.05;
+  options.field.cutoff_m = 0.15;
+  options.field.free_value = 0.0;
+  return options;
+}
+
 void validate(const LaserSensor& laser) {
   if (!finite(laser.mount)) throw Error("laser: the mount pose must be finite");
   if (!(laser.max_range > 0.0) || !std::isfinite(laser.max_range)) {
