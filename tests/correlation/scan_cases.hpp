@@ -116,8 +116,8 @@ inline ScanCase make_scan_case(std::mt19937& rng, int c) {
     case 5:
       s.grid = make_grid(rng, w, h, GridKind::Periodic);
       break;
-    case 6:  // not ternary: the float bound levels
-      s.grid = make_grid(rng, w, h, c % 2 == 0 ? GridKind::Floats : GridKind::Constant);
+    case 6:  // not ternary: the float bound levels, or a field's int8 ones
+      s.grid = make_grid(rng, w, h, c % 16 == 6 ? GridKind::Floats : GridKind::Field);
       break;
     default: {  // needles: a few occupied cells in unknown space. With few points, a bound
                 // is tight: one that misses where a point can land prunes the winner.

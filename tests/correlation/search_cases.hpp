@@ -2,6 +2,7 @@
 // Random search problems shared by the branch-and-bound tests: grids of several kinds (ternary,
 // floats, ties), sparse local grids and lattices, drawn portably from fixed seeds.
 #include "gridloc/engine/correlation/branch_and_bound.hpp"
+#include "gridloc/grids/likelihood_field.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +18,9 @@ namespace gridloc::test {
 
 inline constexpr ArcRule kRules[] = {ArcRule::Neutral, ArcRule::Signed};
 
-enum class GridKind { Ternary, Floats, Zero, Constant, Sparse, Periodic, Count };
+/// Field: a likelihood field's values, whole multiples of 1 / kFieldLevels near walls and
+/// -1 or 0 on free cells (its pyramid's int8 levels use the scale kFieldLevels).
+enum class GridKind { Ternary, Floats, Zero, Constant, Sparse, Periodic, Field, Count };
 
 inline EvidenceGrid make_grid(std::mt19937& rng, int w, int h, GridKind kind) {
   GridGeometry geo;
@@ -43,6 +46,13 @@ inline EvidenceGrid make_grid(std::mt19937& rng, int w, int h, GridKind kind) {
       for (float& v : g.cells) {
         const int r = uniform_int(rng, 0, 9);
         v = r == 0 ? 1.0f : (r <= 3 ? -1.0f : 0.0f);
+      }
+      break;
+    case GridKind::Field:
+      for (float& v : g.cells) {
+        const int r = uniform_int(rng, 0, 3);
+        v = r == 0 ? -1.0f
+                   : (r == 1 ? 0.0f : uniform_int(rng, 1, kFieldLevels) / float(kFieldLevels));
       }
       break;
     case GridKind::Periodic: {  // a small tile repeated: equal scores at many translations

@@ -99,10 +99,11 @@ TEST(BoundPyramid, ATernaryGridKeepsItsLevelsAsInt8Only) {
 }
 
 // Max-pooled levels only: the arc view's levels as before, and one level of the grid's
-// minimum standing for every min-pooled level (memory and pooling halved for a laser's hits).
+// minimum standing for every min-pooled level (memory and pooling halved for a laser's hits);
+// an int8 pyramid (ternary or a likelihood field's) keeps no float level.
 TEST(BoundPyramid, MaxOnlyKeepsOneLevelOfTheGridsMinimum) {
   std::mt19937 rng(13);
-  for (GridKind kind : {GridKind::Ternary, GridKind::Floats}) {
+  for (GridKind kind : {GridKind::Ternary, GridKind::Floats, GridKind::Field}) {
     const EvidenceGrid g = make_grid(rng, 10, 8, kind);
     const PaddedGrid padded = pad_grid(g, 2, ArcRule::Neutral);
     const BoundPyramid both = make_bound_pyramid(padded, 3);
@@ -118,15 +119,20 @@ TEST(BoundPyramid, MaxOnlyKeepsOneLevelOfTheGridsMinimum) {
       ASSERT_EQ(p.grid_min8.size(), 2u);  // level 0 (the grid) and the minimum's level
       EXPECT_EQ(p.grid_min8[0], both.grid_min8[0]);
       for (std::size_t k = 0; k < cells; ++k) {
-        EXPECT_EQ(p.grid_min8[1][k], static_cast<std::int8_t>(p.grid_min_all));
+        EXPECT_EQ(p.grid_min8[1][k], static_cast<std::int8_t>(p.grid_min_all * p.int8_scale));
       }
     }
+    EXPECT_EQ(p.float_levels, kind == GridKind::Floats);
+    EXPECT_EQ(p.has_int8(), kind != GridKind::Floats);
     for (int level = 1; level <= 3; ++level) {
       const auto l = static_cast<std::size_t>(level);
-      EXPECT_EQ(p.arc_max[l].cells, both.arc_max[l].cells);
-      EXPECT_EQ(p.grid_min[l].cells.empty(), level > 1 || p.ternary()) << level;
+      EXPECT_EQ(p.arc_max[l].cells.empty(), !p.float_levels) << level;
+      if (p.float_levels) {
+        EXPECT_EQ(p.arc_max[l].cells, both.arc_max[l].cells);
+      }
+      EXPECT_EQ(p.grid_min[l].cells.empty(), level > 1 || !p.float_levels) << level;
     }
-    if (!p.ternary()) {
+    if (p.float_levels) {
       for (float v : p.grid_min[1].cells) EXPECT_EQ(v, p.grid_min_all);
     }
   }

@@ -49,7 +49,8 @@ void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
       p.grid_min8.push_back(std::move(min));
     } else if (level == 1) {  // the grid's minimum, standing for every level
       std::vector<std::int8_t> min = p.grid_min8.front();
-      std::fill_n(min.begin(), cells, static_cast<std::int8_t>(p.grid_min_all));
+      std::fill_n(min.begin(), cells,
+                  static_cast<std::int8_t>(std::lround(p.grid_min_all * p.int8_scale)));
       p.grid_min8.push_back(std::move(min));
     }
     const auto l = static_cast<std::size_t>(level);
@@ -111,7 +112,9 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
   }
   // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): 5x
   // less memory than float levels, and no page of a float grid to fault in per level.
-  if (p.ternary()) {
+  // So is an int8 pyramid without min levels (a laser's hits: fixed-point points only).
+  p.float_levels = !(p.ternary() || (p.has_int8() && !p.min_levels));
+  if (!p.float_levels) {
     pool_int8_levels(p, global, depth);
   } else {
     pool_float_levels(p, global, depth, int8);

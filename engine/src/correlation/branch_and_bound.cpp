@@ -309,27 +309,30 @@ class Search {
     const int ref = (node.heading + last_heading) / 2;
     const int widen = widening(points_->max_norm, std::max(ref - node.heading, last_heading - ref));
     const auto& cells = grids_.point_cells(ref);
-    const double sums = pyramid_.ternary()
-                            ? interval_sum(arc8_levels_, min8_levels_, node, widen, cells)
-                            : interval_sum(arc_levels_, min_levels_, node, widen, cells);
+    const double scale = pyramid_.int8_scale;  // int8 levels hold values times it
+    const double sums =
+        pyramid_.float_levels
+            ? interval_sum(arc_levels_, min_levels_, node, widen, cells, 1.0)
+            : interval_sum(arc8_levels_, min8_levels_, node, widen, cells, scale) / scale;
     return sums + slack_;
   }
 
-  /// The heading-interval bound's sums (see interval_bound), over grids of T: every point's
-  /// cell widened by `widen` cells on every side.
+  /// The heading-interval bound's sums (see interval_bound), over grids of T holding values
+  /// times `scale`: every point's cell widened by `widen` cells on every side.
   template <typename T>
   double interval_sum(const std::vector<const T*>& arc, const std::vector<const T*>& min,
-                      const Node& node, int widen, const HeadingGrids::PointCells& cells) const {
+                      const Node& node, int widen, const HeadingGrids::PointCells& cells,
+                      double scale) const {
     const int level =
         std::bit_width(static_cast<unsigned>((1 << node.block_level) + 2 * widen - 1));
     const double free_weight =
         points_->size() > points_->hit_count ? points_->weight[points_->hit_count] : 0.0;
     double positive = 0.0, negative = 0.0;
     if (level > pyramid_.depth()) {  // wider than any level: the whole grid's extremes
-      positive =
-          static_cast<double>(cells.hit_offset.size()) * std::max(pyramid_.arc_max_all, 0.0f);
-      negative =
-          static_cast<double>(cells.free_offset.size()) * std::min(pyramid_.grid_min_all, 0.0f);
+      positive = static_cast<double>(cells.hit_offset.size()) *
+                 std::max(pyramid_.arc_max_all, 0.0f) * scale;
+      negative = static_cast<double>(cells.free_offset.size()) *
+                 std::min(pyramid_.grid_min_all, 0.0f) * scale;
       return positive + free_weight * negative;
     }
     // Pooled cells cover [x, x + 2^level): read `widen` cells before the block.

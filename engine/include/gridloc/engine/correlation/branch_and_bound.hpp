@@ -52,6 +52,10 @@ struct BoundPyramid {
   /// grids are all positive, a scan's hits, reads none) every level above 0 is one grid of
   /// grid_min_all, a looser bound that still holds: grid_min[1] and grid_min8[1].
   bool min_levels = true;
+  /// Whether arc_max[h] and grid_min[h] hold float cells. Without them (a ternary grid, or
+  /// an int8 pyramid without min levels) the bounds read the int8 levels; a local grid the
+  /// fixed-point kernel cannot read is then bounded by the whole grid's extremes.
+  bool float_levels = true;
 
   /// The top level h (0 when only level 0 exists).
   int depth() const { return static_cast<int>(arc_max.size()) - 1; }
@@ -74,6 +78,18 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth,
 /// per heading: ceil(log2(max(columns, rows))); a deeper pyramid adds nothing for it.
 int bound_depth_for(const Lattice& lattice);
 
+/// Upper bound on the score of `local` anywhere on the grid: each positive cell times the
+/// arc view's maximum, each negative one times the grid's minimum.
+inline double extremes_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& local) {
+  double bound = 0.0;
+  for (std::size_t k = 0; k < local.value.size(); ++k) {
+    const double v = local.value[k];
+    bound += v * (k < local.arc_count ? std::max(pyramid.arc_max_all, 0.0f)
+                                      : std::min(pyramid.grid_min_all, 0.0f));
+  }
+  return bound + 1e-6 * (1.0 + std::abs(bound));  // float rounding of the exact sums
+}
+
 /// Upper bound on score(global, local, x, y) for every (x, y) in [ix, ix + 2^h) x
 /// [iy, iy + 2^h) that lies in the map, at level 1 <= h <= pyramid.depth(); (ix, iy) must
 /// lie in the map. Computed exactly as score() computes a score, with pooled values: each
@@ -91,6 +107,7 @@ inline double block_bound(const BoundPyramid& pyramid, const PlacedLocalGrid& lo
                      pyramid.grid_min8[pyramid.min_level(h)].data() + origin, local) /
            static_cast<double>(pyramid.int8_scale);
   }
+  if (!pyramid.float_levels) return extremes_bound(pyramid, local);
   return correlate(arc_grid.cells.data() + origin,
                    pyramid.grid_min[pyramid.min_level(h)].cells.data() + origin, local);
 }
