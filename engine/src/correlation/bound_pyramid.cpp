@@ -33,8 +33,9 @@ EvidenceGrid geometry_only(const EvidenceGrid& grid) {
   return shell;
 }
 
-/// Levels 1..depth of a ternary pyramid, each pooled from the one below as int8: its bounds
-/// read nothing else, so no float level is made (pooling commutes with the exact int8 map).
+/// Levels 1..depth of an int8-only pyramid (ternary, or without min levels), each pooled
+/// from the one below as int8: its bounds read nothing else, so no float level is made
+/// (pooling commutes with the exact int8 map).
 void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
   const int w = global.grid.width(), h = global.grid.height();
   const std::size_t cells = global.grid.cells.size();

@@ -26,8 +26,9 @@ double median(std::vector<double> v) {
 
 double distance_to_walls(const PolygonMap& map, const Eigen::Vector2d& p) {
   double distance = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : polygon_edges(map))
+  for (const auto& [a, b] : polygon_edges(map)) {
     distance = std::min(distance, distance_to_segment(p, a, b));
+  }
   return distance;
 }
 

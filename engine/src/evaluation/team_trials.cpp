@@ -42,8 +42,9 @@ bool in_free_cell(const OccupancyMap& grid, const Eigen::Vector2d& p) {
 
 double wall_distance(const MapFeatures& map, const Eigen::Vector2d& p) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const MapWall& wall : map.walls)
+  for (const MapWall& wall : map.walls) {
     nearest = std::min(nearest, distance_to_segment(p, wall.a, wall.b));
+  }
   return nearest;
 }
 
