@@ -190,6 +190,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   }
   options.laser.max_range = args.max_range;
   options.laser.fuse_drive = args.fuse_drive;
+  options.laser.tracking_field = false;  // --global-grid and --field-* say which grid
   options.odometry = parse_odometry_source(args.odometry);
   if (!args.odometry_noise.empty())
     options.odometry_noise = parse_odometry_noise(args.odometry_noise);

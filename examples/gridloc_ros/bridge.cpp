@@ -84,9 +84,7 @@ gridloc::Localizer make_localizer(gridloc::OccupancyMap map, const BridgeOptions
   gridloc::LaserSensor laser;
   laser.mount = to_gridloc(options.laser_mount);
   laser.max_range = options.laser_max_range;
-  gridloc::LocalizerOptions localizer = localizer_options(options, resolution);
-  localizer.correlation = gridloc::with_laser_tracking_grid(localizer.correlation);
-  return gridloc::Localizer(std::move(map), laser, localizer);
+  return gridloc::Localizer(std::move(map), laser, localizer_options(options, resolution));
 }
 
 /// Runs `what`, turning gridloc's errors into std::runtime_error (the ROS side need not

@@ -65,14 +65,15 @@ TEST(LaserLocalizer, OneScanInTheCorridorIsAmbiguous) {
 }
 
 /// A drive past the corridor's south door, checked scan by scan: never `localized` wrongly,
-/// `localized` within 5 cm and 1 degree at the end.
-void expect_the_drive_places_it(const LocalizerOptions& options) {
+/// `localized` within 5 cm and 1 degree at the end. `tracking_field`: LaserSensor's.
+void expect_the_drive_places_it(bool tracking_field) {
   const OccupancyMap map = test::door_corridor();
   // A 3 m front laser: the first scan's look-alikes crowd out the truth (more than the set
   // holds), so the drive's scans are fused into one view that reaches the door.
   LaserSensor laser = front_laser();
   laser.fuse_drive = true;
-  Localizer localizer(map, laser, options);
+  laser.tracking_field = tracking_field;
+  Localizer localizer(map, laser, laser_options());
   const Pose2 odometry_origin{-3.0, 7.0, 2.0};  // only increments matter
   // The look-alikes' weights part as the drive passes the door; no answer is localized
   // before one place holds nearly all of it (issue 34), and none is localized wrongly.
@@ -93,17 +94,23 @@ void expect_the_drive_places_it(const LocalizerOptions& options) {
   EXPECT_LE(std::abs(normalize_angle(e.pose.theta - truth.theta)), deg2rad(1.0));
 }
 
+// By default a laser is tracked on with_laser_tracking_grid's likelihood field (issue 34).
 TEST(LaserLocalizer, ADrivePastTheSouthDoorPlacesIt) {
-  expect_the_drive_places_it(laser_options());
+  expect_the_drive_places_it(true);
 }
 
-// The grid the command line and the ROS node track a laser on (issue 34): a likelihood field.
-TEST(LaserLocalizer, OnTheLaserTrackingFieldTheDrivePlacesItToo) {
-  LocalizerOptions options = laser_options();
-  options.correlation = with_laser_tracking_grid(options.correlation);
-  EXPECT_EQ(options.correlation.global, GlobalModel::LikelihoodField);
-  EXPECT_EQ(options.correlation.resolution, 0.05);  // the rest kept
-  expect_the_drive_places_it(options);
+// The options' own grid (the contour-thinned one by default) places it too.
+TEST(LaserLocalizer, OnTheOptionsGridTheDrivePlacesItToo) {
+  expect_the_drive_places_it(false);
+}
+
+TEST(LaserLocalizer, TheTrackingGridIsALikelihoodFieldKeepingTheRest) {
+  const CorrelationOptions options = with_laser_tracking_grid(laser_options().correlation);
+  EXPECT_EQ(options.global, GlobalModel::LikelihoodField);
+  EXPECT_EQ(options.field.sigma_m, 0.05);
+  EXPECT_EQ(options.field.cutoff_m, 0.15);
+  EXPECT_EQ(options.field.free_value, 0.0);
+  EXPECT_EQ(options.resolution, 0.05);  // the rest kept
 }
 
 TEST(LaserLocalizer, AnOffCentreLaserIsPlacedByItsMount) {

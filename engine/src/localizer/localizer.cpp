@@ -91,7 +91,8 @@ CorrelationOptions with_drive_reach(const LocalizerOptions& options, const Sonar
 /// anywhere along the drive window.
 CorrelationOptions with_laser_reach(const LocalizerOptions& options, const LaserSensor& laser) {
   validate(laser);
-  CorrelationOptions correlation = options.correlation;
+  CorrelationOptions correlation =
+      laser.tracking_field ? with_laser_tracking_grid(options.correlation) : options.correlation;
   correlation.scan = laser.model;
   correlation.reach_m =
       std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +

@@ -121,13 +121,18 @@ struct LaserSensor {
   /// weights add the scans up, and an odometry slip inside the window would shift the whole
   /// fused cloud (a confident wrong answer; issue 34).
   bool fuse_drive = false;
+  /// Match scans on with_laser_tracking_grid's likelihood field whatever
+  /// LocalizerOptions::correlation's grid (the default: it tracks real buildings best);
+  /// false: the correlation options' grid and field as given.
+  bool tracking_field = true;
 };
 
 /// The map's grid a laser Localizer tracks best on: `options` matching scans on a likelihood
 /// field 5 cm wide that reaches 15 cm from a wall, with no free-space evidence (issue 34:
 /// on nine real buildings under three odometry models and three seeds, 78.6 -> 86.4 % of
 /// scans `localized` and right and 68 -> 28 wrong, against the contour-thinned grid; a ring
-/// of sonars keeps that one, seed 001).
+/// of sonars keeps that one, seed 001). A laser Localizer applies it unless
+/// LaserSensor::tracking_field is false.
 CorrelationOptions with_laser_tracking_grid(CorrelationOptions options);
 
 /// Checks a laser description; throws gridloc::Error naming the field.
