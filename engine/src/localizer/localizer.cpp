@@ -8,6 +8,8 @@
 #include <sstream>
 #include <utility>
 
+#include <Eigen/LU>
+
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/driver_readings.hpp"
 
@@ -65,6 +67,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.localized_sigma_rad, "must be finite and >= 0");
   require(options.miss_fit_ratio >= 0.0 && options.miss_fit_ratio <= 1.0, "miss_fit_ratio",
           options.miss_fit_ratio, "must lie in [0, 1]");
+  require(options.weak_fit_ratio >= 0.0 && options.weak_fit_ratio <= 1.0, "weak_fit_ratio",
+          options.weak_fit_ratio, "must lie in [0, 1]");
   require(options.prior_fit_ratio >= 0.0 && options.prior_fit_ratio <= 1.0, "prior_fit_ratio",
           options.prior_fit_ratio, "must lie in [0, 1]");
   require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
@@ -98,6 +102,12 @@ CorrelationOptions with_laser_reach(const LocalizerOptions& options, const Laser
       std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +
                                         options.drive.max_distance_m);
   return correlation;
+}
+
+/// The covariance of two independent Gaussian estimates of one pose combined (the Kalman
+/// update's a - a (a + b)^-1 a).
+Eigen::Matrix3d fused(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return a - a * (a + b).inverse() * a;
 }
 
 bool finite(const Pose2& pose) {
@@ -420,7 +430,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
                         : e.verdict == Verdict::NotLocalized;
   if (miss) {
     ++hypothesis.misses;
-    e.verdict = Verdict::NotLocalized;
+    if (!place_on_weak_fit(hypothesis, e)) e.verdict = Verdict::NotLocalized;
     return;
   }
   hypothesis.misses = 0;
@@ -455,13 +465,34 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     e.verdict = Verdict::NotLocalized;
     return;
   }
-  // The scan fits the odometry's place as well as any: the place stays `localized` while
-  // its grown covariance is tight.
+  // The scan fits the odometry's place as well as any: the place stays there, the window's
+  // spread widened by the gap between its winner and that place narrows the grown covariance
+  // (along a corridor the gap keeps it wide), and the place stays `localized` while tight.
   hypothesis.pose = near.pose;
-  const Eigen::Matrix3d& c = hypothesis.covariance;
-  const bool tight = std::sqrt(std::max(c(0, 0), c(1, 1))) <= options_.localized_sigma_m &&
-                     std::sqrt(c(2, 2)) <= options_.localized_sigma_rad;
-  e.verdict = tight && hypothesis.confirmed && !weak ? Verdict::Localized : Verdict::NotLocalized;
+  if (fits_as_usual) {
+    const Eigen::Vector3d gap(near.pose.x - e.pose.x, near.pose.y - e.pose.y,
+                              normalize_angle(near.pose.theta - e.pose.theta));
+    hypothesis.covariance = fused(hypothesis.covariance, e.covariance + gap * gap.transpose());
+  }
+  e.verdict = tight(hypothesis.covariance) && hypothesis.confirmed && !weak ? Verdict::Localized
+                                                                            : Verdict::NotLocalized;
+}
+
+bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const {
+  const bool placed = hypothesis.confirmed &&
+                      e.normalized_score >= options_.weak_fit_ratio * hypothesis.usual_fit &&
+                      tight(e.covariance) && !surprising(hypothesis, e.pose);
+  if (!placed) return false;
+  hypothesis.pose = e.pose;
+  hypothesis.covariance = fused(hypothesis.covariance, e.covariance);
+  const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
+  e.verdict = tight(hypothesis.covariance) && !weak ? Verdict::Localized : Verdict::NotLocalized;
+  return true;
+}
+
+bool Localizer::tight(const Eigen::Matrix3d& covariance) const {
+  return std::sqrt(std::max(covariance(0, 0), covariance(1, 1))) <= options_.localized_sigma_m &&
+         std::sqrt(covariance(2, 2)) <= options_.localized_sigma_rad;
 }
 
 bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& placed) const {

@@ -58,6 +58,13 @@ struct LocalizerOptions {
   /// explains nothing there (a miss, the place not moved), whatever its own verdict: a
   /// window always finds something, even for a robot carried elsewhere.
   double miss_fit_ratio = 0.5;
+  /// A miss scoring at least this share of the place's usual normalized score still places
+  /// a confirmed place when its winner is tight (within localized_sigma_m/_rad) and lies
+  /// where the odometry carried the place (not surprising, step_min_m): the room changed
+  /// since the map was made (people, furniture, a door). Its covariance is fused with the
+  /// carried one, and the place stays `localized` while that is tight; it still counts as a
+  /// miss toward a re-search. At or above miss_fit_ratio: no such rule.
+  double weak_fit_ratio = 0.25;
   /// A window scoring below this share of the place's usual normalized score is not
   /// `localized`, whatever its own verdict: the scan fits the place worse than the scans
   /// before it did (a look-alike a corridor slid or turned the place into, or a view the map
@@ -246,6 +253,11 @@ class Localizer {
   /// where it puts the place: updates the place and sets e.verdict to the place's own.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
              const SearchWindow& global) const;
+  /// A miss that still places the place (LocalizerOptions::weak_fit_ratio): when it does,
+  /// moves the place there, fuses the covariances and sets e.verdict; else returns false.
+  bool place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const;
+  /// Whether a covariance is within localized_sigma_m and localized_sigma_rad.
+  bool tight(const Eigen::Matrix3d& covariance) const;
   /// Whether `placed` lies farther from the carried place than its covariance allows.
   bool surprising(const TrackedHypothesis& predicted, const Pose2& placed) const;
   /// The window's estimate; a window wider than three coarse cells is searched on the
