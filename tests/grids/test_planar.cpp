@@ -1,6 +1,7 @@
 // Tests of grids/include/gridloc/grids/planar.hpp against brute force: the 2-D cross product
 // is the z of the 3-D one, antisymmetric, and its sign says which way b turns from a; the
-// distance to a segment is that of its nearest point.
+// distance to a segment is that of its nearest point; the total-least-squares line leaves
+// the least sum of squared orthogonal distances of any line.
 #include "gridloc/grids/planar.hpp"
 
 #include <gtest/gtest.h>
@@ -8,7 +9,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
+#include <numbers>
 #include <random>
+#include <vector>
 
 namespace gridloc {
 namespace {
@@ -53,6 +56,50 @@ TEST(Planar, DistanceToSegmentIsTheNearestPointOfIt) {
   EXPECT_EQ(distance_to_segment({-3.0, 4.0}, a, b), 5.0);  // beyond an end
   EXPECT_EQ(distance_to_segment({7.0, 4.0}, a, b), 5.0);
   EXPECT_EQ(distance_to_segment({3.0, 4.0}, a, a), 5.0);  // a point
+}
+
+/// The sum of the squared distances of `points` from the line through `centre` along the
+/// unit `direction`.
+double orthogonal_squares(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre,
+                          const Eigen::Vector2d& direction) {
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points) {
+    const double off = cross(direction, p - centre);
+    sum += off * off;
+  }
+  return sum;
+}
+
+TEST(Planar, TheTotalLeastSquaresLineLeavesTheLeastOrthogonalSquares) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> value(-5.0, 5.0), angle(0.0, std::numbers::pi);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  for (int k = 0; k < 200; ++k) {
+    const double heading = angle(rng);
+    const Eigen::Vector2d along(std::cos(heading), std::sin(heading)), base(value(rng), value(rng));
+    std::vector<Eigen::Vector2d> points;
+    for (int i = 0; i < 3 + k % 20; ++i) {
+      points.push_back(base + value(rng) * along +
+                       noise(rng) * Eigen::Vector2d(-along.y(), along.x()));
+    }
+    const FittedLine line =
+        total_least_squares_line(points.size(), [&](std::size_t i) { return points[i]; });
+    EXPECT_NEAR(line.direction.norm(), 1.0, 1e-12) << k;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& p : points) mean += p;
+    EXPECT_LE((line.centroid - mean / static_cast<double>(points.size())).norm(), 1e-12) << k;
+    const double fitted = orthogonal_squares(points, line.centroid, line.direction);
+    for (int a = 0; a < 3600; ++a) {  // any other direction through the centroid, 0.05 deg apart
+      const double theta = a * std::numbers::pi / 3600.0;
+      const Eigen::Vector2d other(std::cos(theta), std::sin(theta));
+      EXPECT_LE(fitted, orthogonal_squares(points, line.centroid, other) + 1e-9) << k;
+    }
+  }
+  const std::vector<Eigen::Vector2d> wall = {{2.0, -1.0}, {2.0, 0.5}, {2.0, 3.0}};  // vertical
+  const FittedLine line = total_least_squares_line(3, [&](std::size_t i) { return wall[i]; });
+  EXPECT_NEAR(std::abs(line.direction.y()), 1.0, 1e-12);
+  EXPECT_NEAR(line.centroid.x(), 2.0, 1e-12);
+  EXPECT_NEAR(line.centroid.y(), 2.5 / 3.0, 1e-12);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc {
 using namespace icp_detail;
@@ -17,19 +18,12 @@ namespace {
 /// Total-least-squares line of points[begin, end): centroid, unit direction, mean |distance|.
 void fit_line(const std::vector<Eigen::Vector2d>& points, Segment& s) {
   const double n = static_cast<double>(s.size());
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
-  for (std::size_t i = s.begin; i < s.end; ++i) c += points[i];
-  c /= n;
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (std::size_t i = s.begin; i < s.end; ++i)
-    cov += (points[i] - c) * (points[i] - c).transpose();
+  // Seed 004 eq. (9) fits y = Ax + B; total least squares also handles vertical segments.
+  const FittedLine line =
+      total_least_squares_line(s.size(), [&](std::size_t k) { return points[s.begin + k]; });
+  const Eigen::Vector2d c = line.centroid;
   s.centroid = c;
-  if (s.size() >= 2) {
-    // Largest eigenvector of the scatter matrix = direction minimizing orthogonal distances
-    // (seed 004 eq. (9) fits y = Ax + B; total least squares also handles vertical segments).
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-    s.direction = eig.eigenvectors().col(1).normalized();
-  }
+  if (s.size() >= 2) s.direction = line.direction.normalized();
   const Eigen::Vector2d normal(-s.direction.y(), s.direction.x());
   double sum = 0.0;
   for (std::size_t i = s.begin; i < s.end; ++i) sum += std::abs(normal.dot(points[i] - c));

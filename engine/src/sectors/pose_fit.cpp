@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "gridloc/grids/planar.hpp"
+
 namespace gridloc::sectors_detail {
 namespace {
 
@@ -56,13 +58,11 @@ Eigen::Vector2d locate_vertex(const std::vector<Eigen::Vector2d>& points, int be
   const auto point = [&](int i) { return points[((i % n) + n) % n]; };
   // The line through `line_points` readings on one side (dir +1 or -1): centre, direction.
   const auto fit = [&](int dir, Eigen::Vector2d& centre, Eigen::Vector2d& direction) {
-    centre.setZero();
-    for (int s = 1; s <= line_points; ++s) centre += point(beam + dir * s);
-    centre /= line_points;
-    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-    for (int s = 1; s <= line_points; ++s)
-      scatter += (point(beam + dir * s) - centre) * (point(beam + dir * s) - centre).transpose();
-    direction = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(1);
+    const FittedLine line = total_least_squares_line(
+        static_cast<std::size_t>(line_points),
+        [&](std::size_t k) { return point(beam + dir * (static_cast<int>(k) + 1)); });
+    centre = line.centroid;
+    direction = line.direction;
   };
   Eigen::Vector2d c1, d1, c2, d2;
   fit(+1, c1, d1);

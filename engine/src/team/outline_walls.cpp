@@ -4,13 +4,14 @@
 
 #include "wall_geometry.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <utility>
 #include <vector>
+
+#include "gridloc/grids/planar.hpp"
 
 namespace gridloc::detail {
 namespace {
@@ -84,17 +85,11 @@ struct WallPiece {
 void fit_line(const Polygon& ring, WallPiece& piece) {
   const std::size_t n = ring.size();
   const std::size_t skip = piece.steps >= 3 ? 1 : 0;
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  for (std::size_t s = skip; s <= piece.steps - skip; ++s) sum += ring[(piece.first + s) % n];
-  const double count = static_cast<double>(piece.steps + 1 - 2 * skip);
-  piece.centre = sum / count;
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (std::size_t s = skip; s <= piece.steps - skip; ++s) {
-    const Eigen::Vector2d d = ring[(piece.first + s) % n] - piece.centre;
-    scatter += d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(scatter);
-  piece.direction = solver.eigenvectors().col(1);  // the larger eigenvalue's
+  const FittedLine line = total_least_squares_line(piece.steps + 1 - 2 * skip, [&](std::size_t k) {
+    return ring[(piece.first + skip + k) % n];
+  });
+  piece.centre = line.centroid;
+  piece.direction = line.direction;
   const Eigen::Vector2d chord = ring[(piece.first + piece.steps) % n] - ring[piece.first];
   if (piece.direction.dot(chord) < 0.0) piece.direction = -piece.direction;
 }

@@ -2,7 +2,6 @@
 // (seed 003 ch. VI B fits y = m x + b by polyfit, eq. 6.2; an orthogonal regression replaces
 // it here because y = m x + b cannot hold a vertical wall and weighs a steep wall's errors
 // along the wrong axis).
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -131,18 +130,12 @@ WallPiece fit_piece(const ScanRun& run, std::ptrdiff_t begin, std::ptrdiff_t end
   WallPiece piece;
   piece.begin = begin;
   piece.end = end;
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
-  for (std::ptrdiff_t i = begin; i < end; ++i) c += run.at(i);
-  c /= static_cast<double>(end - begin);
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (std::ptrdiff_t i = begin; i < end; ++i) {
-    scatter += (run.at(i) - c) * (run.at(i) - c).transpose();
-  }
-  // The scatter's largest eigenvector: the direction minimizing the orthogonal distances.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-  Eigen::Vector2d direction = eigen.eigenvectors().col(1).normalized();
+  const auto fit = total_least_squares_line(
+      static_cast<std::size_t>(end - begin),
+      [&](std::size_t k) { return run.at(begin + static_cast<std::ptrdiff_t>(k)); });
+  Eigen::Vector2d direction = fit.direction.normalized();
   if (direction.dot(run.at(end - 1) - run.at(begin)) < 0.0) direction = -direction;
-  piece.line.centroid = c;
+  piece.line.centroid = fit.centroid;
   piece.line.direction = direction;
   for (std::ptrdiff_t i = begin; i < end; ++i) {
     const double d = piece.line.distance(run.at(i));

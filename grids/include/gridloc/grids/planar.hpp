@@ -2,7 +2,9 @@
 /// Plane geometry shared by every family (issue 31): one definition of each helper, the
 /// callers keeping their own tolerances.
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstddef>
 
 namespace gridloc {
 
@@ -29,6 +31,30 @@ inline double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen:
 inline double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                                   const Eigen::Vector2d& b) {
   return std::sqrt(squared_distance_to_segment(p, a, b));
+}
+
+/// A total-least-squares line: the points' centroid and the unit direction that minimizes
+/// their orthogonal distances (the scatter matrix's principal eigenvector; its sign is the
+/// solver's, each caller orients it).
+struct FittedLine {
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
+};
+
+/// The total-least-squares line through point(0), ..., point(count - 1), count >= 1 (one
+/// point, or all alike: any direction).
+template <class PointAt>
+FittedLine total_least_squares_line(std::size_t count, const PointAt& point) {
+  FittedLine line;
+  for (std::size_t k = 0; k < count; ++k) line.centroid += point(k);
+  line.centroid /= static_cast<double>(count);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Eigen::Vector2d d = point(k) - line.centroid;
+    scatter += d * d.transpose();
+  }
+  line.direction = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(1);
+  return line;
 }
 
 }  // namespace gridloc
