@@ -14,7 +14,7 @@ esac
 
 packages="cmake make g++ libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev \
   libgtest-dev libbenchmark-dev libopencv-core-dev libopencv-imgcodecs-dev libopencv-imgproc-dev \
-  liboctomap-dev zlib1g-dev libboost-dev"
+  liboctomap-dev zlib1g-dev libpng-dev libboost-dev"
 # The test job also builds and runs the ROS 1 node's end-to-end test (examples/gridloc_ros).
 if [ "$job" = test ]; then
   packages="$packages pkg-config ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev \
