@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "gridloc/grids/cell_walk.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
@@ -145,23 +146,11 @@ struct BeamCounts {
 void count_beam(const GridGeometry& g, const Beam& beam, BeamCounts& counts) {
   const Eigen::Vector2d a = (beam.from - g.origin) / g.resolution;
   const Eigen::Vector2d b = (beam.to - g.origin) / g.resolution;
-  int ix = static_cast<int>(std::floor(a.x())), iy = static_cast<int>(std::floor(a.y()));
   const int ex = static_cast<int>(std::floor(b.x())), ey = static_cast<int>(std::floor(b.y()));
-  const double dx = b.x() - a.x(), dy = b.y() - a.y();
-  const double inf = std::numeric_limits<double>::infinity();
-  const double tdx = dx != 0.0 ? 1.0 / std::abs(dx) : inf;
-  const double tdy = dy != 0.0 ? 1.0 / std::abs(dy) : inf;
-  double tx = dx != 0.0 ? (dx > 0.0 ? ix + 1 - a.x() : a.x() - ix) * tdx : inf;
-  double ty = dy != 0.0 ? (dy > 0.0 ? iy + 1 - a.y() : a.y() - iy) * tdy : inf;
-  while (ix != ex || iy != ey) {
-    BeamCounts::add(counts.passes[g.index(ix, iy)]);
-    if (iy == ey || (ix != ex && tx < ty)) {
-      tx += tdx;
-      ix += ex > ix ? 1 : -1;
-    } else {
-      ty += tdy;
-      iy += ey > iy ? 1 : -1;
-    }
+  CellWalk walk(a.x(), a.y(), b.x() - a.x(), b.y() - a.y());
+  while (walk.ix != ex || walk.iy != ey) {
+    BeamCounts::add(counts.passes[g.index(walk.ix, walk.iy)]);
+    walk.step_towards(ex, ey);
   }
   BeamCounts::add((beam.hit ? counts.hits : counts.passes)[g.index(ex, ey)]);
 }

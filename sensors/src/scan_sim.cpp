@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "gridloc/grids/cell_walk.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/rng.hpp"
 
@@ -17,29 +18,12 @@ namespace {
 double cast(const OccupancyMap& map, double gx, double gy, double a, double max_range) {
   const GridGeometry& g = map.geometry;
   const double res = g.resolution;
-  const double ox = gx / res, oy = gy / res;  // in cells
-  const double dx = std::cos(a), dy = std::sin(a);
-  int ix = static_cast<int>(std::floor(ox)), iy = static_cast<int>(std::floor(oy));
-  const int sx = dx > 0.0 ? 1 : -1, sy = dy > 0.0 ? 1 : -1;
-  const double inf = std::numeric_limits<double>::infinity();
-  const double tdx = dx != 0.0 ? 1.0 / std::abs(dx) : inf;
-  const double tdy = dy != 0.0 ? 1.0 / std::abs(dy) : inf;
-  double tx = dx != 0.0 ? (dx > 0.0 ? ix + 1 - ox : ox - ix) * tdx : inf;
-  double ty = dy != 0.0 ? (dy > 0.0 ? iy + 1 - oy : oy - iy) * tdy : inf;
+  CellWalk walk(gx / res, gy / res, std::cos(a), std::sin(a));  // in cells
   const double limit = max_range / res;
-  double t = 0.0;
-  while (t < limit) {
-    if (!g.contains(ix, iy)) return max_range;
-    if (map.at(ix, iy) == CellState::Occupied) return t * res;
-    if (tx < ty) {
-      t = tx;
-      tx += tdx;
-      ix += sx;
-    } else {
-      t = ty;
-      ty += tdy;
-      iy += sy;
-    }
+  while (walk.t < limit) {
+    if (!g.contains(walk.ix, walk.iy)) return max_range;
+    if (map.at(walk.ix, walk.iy) == CellState::Occupied) return walk.t * res;
+    walk.step();
   }
   return max_range;
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "gridloc/grids/cell_walk.hpp"
+
 namespace gridloc {
 namespace {
 
@@ -23,33 +25,19 @@ struct UsefulRays {
 /// the range (cells from the start).
 double cast_useful_ray(const UsefulRays& rays, double a) {
   const GridGeometry& g = rays.overlay.grid;
-  const double inf = std::numeric_limits<double>::infinity();
-  const double dx = std::cos(a), dy = std::sin(a);
-  const int sx = dx > 0.0 ? 1 : -1, sy = dy > 0.0 ? 1 : -1;
-  const double tdx = dx != 0.0 ? 1.0 / std::abs(dx) : inf;
-  const double tdy = dy != 0.0 ? 1.0 / std::abs(dy) : inf;
-  double tx = 0.5 * tdx, ty = 0.5 * tdy;  // the ray starts at the cell centre
-  int ix = rays.from.ix, iy = rays.from.iy;
-  double t = 0.0;
-  while (t <= rays.limit) {
-    const std::size_t i = g.index(ix, iy);
-    const double cx = ix - rays.from.ix, cy = iy - rays.from.iy;
+  // The ray starts at the cell centre.
+  CellWalk walk(rays.from.ix + 0.5, rays.from.iy + 0.5, std::cos(a), std::sin(a));
+  while (walk.t <= rays.limit) {
+    const std::size_t i = g.index(walk.ix, walk.iy);
+    const double cx = walk.ix - rays.from.ix, cy = walk.iy - rays.from.iy;
     if (!rays.useful[i] && cx * cx + cy * cy <= rays.limit * rays.limit) {
       rays.useful[i] = 1;
       ++rays.marked;
     }
-    if (tx < ty) {
-      t = tx;
-      tx += tdx;
-      ix += sx;
-    } else {
-      t = ty;
-      ty += tdy;
-      iy += sy;
-    }
-    if (!g.contains(ix, iy) || !rays.overlay.in_oi[g.index(ix, iy)]) break;
+    walk.step();
+    if (!g.contains(walk.ix, walk.iy) || !rays.overlay.in_oi[g.index(walk.ix, walk.iy)]) break;
   }
-  return std::min(t, rays.limit);
+  return std::min(walk.t, rays.limit);
 }
 
 /// Adds rays between angles a0 < a1 (whose rays reached t0 and t1 cells) until neighbouring
