@@ -8,8 +8,6 @@
 #include <sstream>
 #include <utility>
 
-#include <Eigen/LU>
-
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/driver_readings.hpp"
 
@@ -102,12 +100,6 @@ CorrelationOptions with_laser_reach(const LocalizerOptions& options, const Laser
       std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +
                                         options.drive.max_distance_m);
   return correlation;
-}
-
-/// The covariance of two independent Gaussian estimates of one pose combined (the Kalman
-/// update's a - a (a + b)^-1 a).
-Eigen::Matrix3d fused(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return a - a * (a + b).inverse() * a;
 }
 
 bool finite(const Pose2& pose) {
@@ -419,90 +411,6 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
   hypothesis.score = e.score;
   hypothesis.estimate = std::move(e);
   return hypothesis;
-}
-
-void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
-                      const SearchWindow& global) const {
-  // A window always finds something: one scoring far below the place's usual fit explains
-  // nothing there (a miss), and does not move the place.
-  const bool miss = hypothesis.usual_fit > 0.0
-                        ? e.normalized_score < options_.miss_fit_ratio * hypothesis.usual_fit
-                        : e.verdict == Verdict::NotLocalized;
-  if (miss) {
-    ++hypothesis.misses;
-    if (!place_on_weak_fit(hypothesis, e)) e.verdict = Verdict::NotLocalized;
-    return;
-  }
-  hypothesis.misses = 0;
-  const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
-  hypothesis.usual_fit = hypothesis.usual_fit > 0.0
-                             ? 0.9 * hypothesis.usual_fit + 0.1 * e.normalized_score
-                             : e.normalized_score;
-  // Where the odometry carried it, or within two cells: when that scores as well as the
-  // window's winner, the scan does not move the place (along a corridor it cannot).
-  const Estimate near = best_near(hypothesis.pose, observation, global);
-  const PlacePrior prior = place_prior(hypothesis.pose, hypothesis.covariance, global.step_theta);
-  const bool fits_as_usual =
-      near.normalized_score >= options_.prior_fit_ratio * hypothesis.usual_fit;
-  const bool odometry_holds = near.score >= (1.0 - options_.odometry_score_slack) * e.score ||
-                              (fits_as_usual && posterior(near, prior) >= posterior(e, prior));
-  const bool same =
-      std::hypot(near.pose.x - e.pose.x, near.pose.y - e.pose.y) <=
-          2.0 * estimator_.options().resolution &&
-      std::abs(normalize_angle(near.pose.theta - e.pose.theta)) <= 2.0 * global.step_theta;
-  if (e.verdict == Verdict::Localized && (same || !odometry_holds)) {
-    // A step the odometry did not make is not trusted yet (the place follows it: a slip
-    // holds at the next observation, a wrong match does not).
-    if (hypothesis.confirmed && surprising(hypothesis, e.pose)) e.verdict = Verdict::NotLocalized;
-    if (weak) e.verdict = Verdict::NotLocalized;
-    hypothesis.pose = e.pose;
-    hypothesis.covariance = e.covariance;
-    hypothesis.confirmed = true;
-    return;
-  }
-  if (!odometry_holds) {  // look-alikes in the window, and the odometry's place is not one
-    hypothesis.pose = e.pose;
-    e.verdict = Verdict::NotLocalized;
-    return;
-  }
-  // The scan fits the odometry's place as well as any: the place stays there, the window's
-  // spread widened by the gap between its winner and that place narrows the grown covariance
-  // (along a corridor the gap keeps it wide), and the place stays `localized` while tight.
-  hypothesis.pose = near.pose;
-  if (fits_as_usual) {
-    const Eigen::Vector3d gap(near.pose.x - e.pose.x, near.pose.y - e.pose.y,
-                              normalize_angle(near.pose.theta - e.pose.theta));
-    hypothesis.covariance = fused(hypothesis.covariance, e.covariance + gap * gap.transpose());
-  }
-  e.verdict = tight(hypothesis.covariance) && hypothesis.confirmed && !weak ? Verdict::Localized
-                                                                            : Verdict::NotLocalized;
-}
-
-bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const {
-  const bool placed = hypothesis.confirmed &&
-                      e.normalized_score >= options_.weak_fit_ratio * hypothesis.usual_fit &&
-                      tight(e.covariance) && !surprising(hypothesis, e.pose);
-  if (!placed) return false;
-  hypothesis.pose = e.pose;
-  hypothesis.covariance = fused(hypothesis.covariance, e.covariance);
-  const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
-  e.verdict = tight(hypothesis.covariance) && !weak ? Verdict::Localized : Verdict::NotLocalized;
-  return true;
-}
-
-bool Localizer::tight(const Eigen::Matrix3d& covariance) const {
-  return std::sqrt(std::max(covariance(0, 0), covariance(1, 1))) <= options_.localized_sigma_m &&
-         std::sqrt(covariance(2, 2)) <= options_.localized_sigma_rad;
-}
-
-bool Localizer::surprising(const TrackedHypothesis& predicted, const Pose2& placed) const {
-  const Eigen::Matrix3d& c = predicted.covariance;
-  const double sigma_xy = std::sqrt(std::max(c(0, 0), c(1, 1)));
-  const double allowed_xy = std::max(options_.step_min_m, options_.prior_sigmas * sigma_xy);
-  const double allowed_theta =
-      std::max(options_.step_min_rad, options_.prior_sigmas * std::sqrt(c(2, 2)));
-  return std::hypot(placed.x - predicted.pose.x, placed.y - predicted.pose.y) > allowed_xy ||
-         std::abs(normalize_angle(placed.theta - predicted.pose.theta)) > allowed_theta;
 }
 
 Estimate Localizer::estimate() const {
