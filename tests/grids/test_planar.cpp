@@ -1,7 +1,7 @@
 // Tests of grids/include/gridloc/grids/planar.hpp against brute force: the 2-D cross product
 // is the z of the 3-D one, antisymmetric, and its sign says which way b turns from a; the
 // distance to a segment is that of its nearest point; the total-least-squares line leaves
-// the least sum of squared orthogonal distances of any line.
+// the least sum of squared orthogonal distances of any line; two lines meet on both.
 #include "gridloc/grids/planar.hpp"
 
 #include <gtest/gtest.h>
@@ -56,6 +56,22 @@ TEST(Planar, DistanceToSegmentIsTheNearestPointOfIt) {
   EXPECT_EQ(distance_to_segment({-3.0, 4.0}, a, b), 5.0);  // beyond an end
   EXPECT_EQ(distance_to_segment({7.0, 4.0}, a, b), 5.0);
   EXPECT_EQ(distance_to_segment({3.0, 4.0}, a, a), 5.0);  // a point
+}
+
+TEST(Planar, TwoLinesMeetWhereEachPassesThrough) {
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> value(-10.0, 10.0);
+  for (int k = 0; k < 500; ++k) {
+    const Eigen::Vector2d p(value(rng), value(rng)), u(value(rng), value(rng));
+    const Eigen::Vector2d q(value(rng), value(rng)), v(value(rng), value(rng));
+    if (std::abs(cross(u.normalized(), v.normalized())) < 0.05) continue;  // near parallel
+    const Eigen::Vector2d meet = line_intersection(p, u, q, v);
+    // On both lines: no distance across either.
+    EXPECT_NEAR(cross(u.normalized(), meet - p), 0.0, 1e-9) << k;
+    EXPECT_NEAR(cross(v.normalized(), meet - q), 0.0, 1e-9) << k;
+  }
+  const Eigen::Vector2d meet = line_intersection({0.0, 1.0}, {1.0, 0.0}, {3.0, -2.0}, {0.0, 2.0});
+  EXPECT_EQ(meet, Eigen::Vector2d(3.0, 1.0));
 }
 
 /// The sum of the squared distances of `points` from the line through `centre` along the

@@ -67,11 +67,8 @@ Eigen::Vector2d locate_vertex(const std::vector<Eigen::Vector2d>& points, int be
   Eigen::Vector2d c1, d1, c2, d2;
   fit(+1, c1, d1);
   fit(-1, c2, d2);
-  const double den = d1.x() * d2.y() - d1.y() * d2.x();
-  if (std::abs(den) < 0.05) return point(beam);  // < 3 deg apart: no corner to intersect
-  const Eigen::Vector2d w = c2 - c1;
-  const double t = (w.x() * d2.y() - w.y() * d2.x()) / den;
-  const Eigen::Vector2d v = c1 + t * d1;
+  if (std::abs(cross(d1, d2)) < 0.05) return point(beam);  // < 3 deg apart: no corner
+  const Eigen::Vector2d v = line_intersection(c1, d1, c2, d2);
   // A corner far from its reading is a bad fit (another surface in the window).
   return (v - point(beam)).norm() < 0.3 + 0.05 * point(beam).norm() ? v : point(beam);
 }

@@ -102,8 +102,7 @@ Eigen::Vector2d join(const Polygon& ring, const WallPiece& before, const WallPie
   const double denom = cross(before.direction, after.direction);
   if (std::abs(denom) <= 1e-6) return fallback;  // near parallel: a step, no corner
   const Eigen::Vector2d p =
-      before.centre +
-      before.direction * (cross(after.centre - before.centre, after.direction) / denom);
+      line_intersection(before.centre, before.direction, after.centre, after.direction);
   const Eigen::Vector2d before_start = ring[before.first];
   const Eigen::Vector2d after_end = ring[(after.first + after.steps) % n];
   if ((p - before_start).dot(before.direction) <= 0.0 ||

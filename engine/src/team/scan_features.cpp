@@ -43,8 +43,7 @@ void check_scan(const RangeScan& scan) {
 
 /// The intersection of two lines that are not parallel.
 Eigen::Vector2d intersection(const FittedLine& a, const FittedLine& b) {
-  const double t = cross(b.centroid - a.centroid, b.direction) / cross(a.direction, b.direction);
-  return a.centroid + t * a.direction;
+  return line_intersection(a.centroid, a.direction, b.centroid, b.direction);
 }
 
 /// The feature's walls: their ends in the scan (saturation1, saturation2), fit and points.

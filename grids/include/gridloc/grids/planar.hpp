@@ -33,6 +33,14 @@ inline double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2
   return std::sqrt(squared_distance_to_segment(p, a, b));
 }
 
+/// Where the line through p along u meets the line through q along v:
+/// p + u cross(q - p, v) / cross(u, v). The lines must not be parallel (cross(u, v) != 0);
+/// each caller says how near parallel is too near.
+inline Eigen::Vector2d line_intersection(const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                                         const Eigen::Vector2d& q, const Eigen::Vector2d& v) {
+  return p + u * (cross(q - p, v) / cross(u, v));
+}
+
 /// A total-least-squares line: the points' centroid and the unit direction that minimizes
 /// their orthogonal distances (the scatter matrix's principal eigenvector; its sign is the
 /// solver's, each caller orients it).
