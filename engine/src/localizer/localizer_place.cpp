@@ -12,9 +12,12 @@ namespace gridloc {
 namespace {
 
 /// The covariance of two independent Gaussian estimates of one pose combined (the Kalman
-/// update's a - a (a + b)^-1 a).
+/// update's a - a (a + b)^-1 a). A whisker on the diagonal keeps a + b invertible when both
+/// are certain along some direction (a zero prior covariance, a window without covariance
+/// cells): the result is then certain there too, never NaN.
 Eigen::Matrix3d fused(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return a - a * (a + b).inverse() * a;
+  const Eigen::Matrix3d sum = a + b + 1e-15 * Eigen::Matrix3d::Identity();
+  return a - a * sum.inverse() * a;
 }
 
 }  // namespace
