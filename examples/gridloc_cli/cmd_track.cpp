@@ -40,6 +40,7 @@ struct TrackArgs {
   double entry_weight = HypothesisWeightOptions{}.entry_weight;
   double evidence_per_scan = HypothesisWeightOptions{}.evidence_per_scan;
   double localized_fit_ratio = LocalizerOptions{}.localized_fit_ratio;
+  double weak_fit_ratio = LocalizerOptions{}.weak_fit_ratio;
   double max_window_turn_deg = LocalizerOptions{}.max_half_theta * 180.0 / std::numbers::pi;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double search_resolution = SlicedSearchOptions{}.resolution;
@@ -165,6 +166,11 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
       << args.resolution;
     throw Error(m.str());
   }
+  if (!(args.weak_fit_ratio >= 0.0 && args.weak_fit_ratio <= 1.0)) {
+    std::ostringstream m;
+    m << "--weak-fit-ratio must lie in [0, 1], got " << args.weak_fit_ratio;
+    throw Error(m.str());
+  }
   LogTrackingOptions options;
   options.localizer.correlation.limits = limits();
   options.localizer.correlation.resolution =
@@ -174,6 +180,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.weights.entry_weight = args.entry_weight;
   options.localizer.weights.evidence_per_scan = args.evidence_per_scan;
   options.localizer.localized_fit_ratio = args.localized_fit_ratio;
+  options.localizer.weak_fit_ratio = args.weak_fit_ratio;
   options.localizer.correlation.global = parse_global(args.global_grid);
   args.field.apply(options.localizer.correlation);
   options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
@@ -366,6 +373,11 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--localized-fit-ratio", args.localized_fit_ratio,
                   "a window scoring below this share of its place's usual normalized score is "
                   "not localized (0: no such rule)")
+      ->capture_default_str();
+  cmd->add_option("--weak-fit-ratio", args.weak_fit_ratio,
+                  "a window scoring under half its place's usual normalized score but at least "
+                  "this share of it still places the place when it lies where the odometry put "
+                  "it (0.5: no such rule)")
       ->capture_default_str();
   cmd->add_option("--max-window-turn", args.max_window_turn_deg,
                   "a tracked place's window spans at most this many degrees either way")

@@ -218,6 +218,7 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --every 0"), {"--every"});
   expect_cli_error(run_cli(dir, base + "--global --max-window-turn -5"),
                    {"--max-window-turn", "-5"});
+  expect_cli_error(run_cli(dir, base + "--global --weak-fit-ratio 2"), {"--weak-fit-ratio", "2"});
   expect_cli_error(run_cli(dir, base + "--global --global-grid fog"), {"--global-grid", "fog"});
   expect_cli_error(run_cli(dir, base + "--global --global-grid field --field-sigma -1"),
                    {"--field-sigma"});
