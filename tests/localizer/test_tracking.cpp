@@ -201,6 +201,42 @@ TEST(Tracking, ARoomChangedSinceTheMapStillPlacesThePlace) {
   EXPECT_THROW(Localizer(map, laser(), bad), Error);
 }
 
+// LocalizerOptions::split_far_winners: for three scans the laser sees what it would see
+// 0.5 m further east (a view the map's half saw differently), the odometry exact. Split,
+// the window's winner joins as a place of its own, weighted by the odometry's prior (here
+// far too unlikely to stay), and the track stays by the odometry's pose; followed, the
+// place moves 0.5 m at once. Neither is `localized` off, and both are right again after.
+TEST(Tracking, AFarWinnerJoinsAsAPlaceRatherThanMovingTheTrack) {
+  const OccupancyMap map = two_rooms();
+  std::vector<Pose2> path;  // east through room B
+  for (double x = 8.0; x < 10.05; x += 0.1) path.push_back({x, 5.5, 0.0});
+  const std::size_t first_shifted = 8, after_shifted = 11;
+  for (const bool split : {true, false}) {
+    LocalizerOptions options = laser_options();
+    options.split_far_winners = split;
+    options.min_half_xy_m = 1.0;  // every window sees the place 0.5 m away
+    Localizer localizer(map, laser(), options);
+    localizer.add_odometry(path[0]);
+    localizer.set_prior(path[0], Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      localizer.add_odometry(path[k]);
+      const bool shifted = k >= first_shifted && k < after_shifted;
+      const Pose2 seen = shifted ? Pose2{path[k].x + 0.5, path[k].y, 0.0} : path[k];
+      localizer.add_observation(double(k), scan_at(map, seen));
+      const Estimate e = localizer.estimate();
+      const double off = std::hypot(e.pose.x - path[k].x, e.pose.y - path[k].y);
+      if (e.verdict == Verdict::Localized) {
+        EXPECT_LE(off, 0.1) << split << " step " << k;
+      }
+      if (k == first_shifted) {  // split, the track stayed; followed, the place moved
+        EXPECT_TRUE(split ? off <= 0.2 : off >= 0.4) << split << ": " << off << " m off";
+      }
+    }
+    EXPECT_TRUE(right(localizer.estimate(), path.back())) << split;
+    EXPECT_EQ(localizer.estimate().verdict, Verdict::Localized) << split;
+  }
+}
+
 // LocalizerOptions::max_half_theta: when the odometry claims a turn the robot did not make
 // and doubts its heading entirely, the place is looked for at every heading by default, and
 // within the cap either way of the claimed heading with it (a corridor turned round, which

@@ -365,7 +365,7 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
       TrackedHypothesis split = *carried;
       split.pose = look_alike.pose;
       split.log_weight += look_alike.log_prior;
-      const double cell = coarse_->options().resolution;
+      const double cell = (coarse_ ? coarse_->options() : estimator_.options()).resolution;
       split.covariance = Eigen::Vector3d(cell * cell, cell * cell,
                                          options_.min_half_theta * options_.min_half_theta / 9.0)
                              .asDiagonal();
@@ -407,7 +407,7 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
     window.half_theta = std::min(2.0 * window.half_theta, max_window_turn());
     e = search_window(observation, window, covariance);
   }
-  place(hypothesis, e, observation, global);
+  place(hypothesis, e, observation, global, look_alikes);
   hypothesis.score = e.score;
   hypothesis.estimate = std::move(e);
   return hypothesis;

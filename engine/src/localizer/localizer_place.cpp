@@ -23,7 +23,7 @@ Eigen::Matrix3d fused(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 }  // namespace
 
 void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
-                      const SearchWindow& global) const {
+                      const SearchWindow& global, std::vector<LookAlike>* look_alikes) const {
   // A window always finds something: one scoring far below the place's usual fit explains
   // nothing there (a miss), and does not move the place.
   const bool miss = hypothesis.usual_fit > 0.0
@@ -51,10 +51,23 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
       std::hypot(near.pose.x - e.pose.x, near.pose.y - e.pose.y) <=
           2.0 * estimator_.options().resolution &&
       std::abs(normalize_angle(near.pose.theta - e.pose.theta)) <= 2.0 * global.step_theta;
-  if (e.verdict == Verdict::Localized && (same || !odometry_holds)) {
+  const bool takes = e.verdict == Verdict::Localized && (same || !odometry_holds);
+  const bool surprise = takes && hypothesis.confirmed && surprising(hypothesis, e.pose);
+  if ((surprise || !odometry_holds) && look_alikes != nullptr &&
+      splits_off(hypothesis, near.pose, e.pose)) {
+    // The winner joins as a place of its own, weighted by the odometry's prior; this one
+    // stays where the odometry put it, with the scan's evidence there.
+    look_alikes->push_back(
+        {e.pose, log_prior(e.pose, prior.carried, prior.covariance, prior.floor)});
+    hypothesis.pose = near.pose;
+    e = near;
+    e.verdict = Verdict::NotLocalized;
+    return;
+  }
+  if (takes) {
     // A step the odometry did not make is not trusted yet (the place follows it: a slip
     // holds at the next observation, a wrong match does not).
-    if (hypothesis.confirmed && surprising(hypothesis, e.pose)) e.verdict = Verdict::NotLocalized;
+    if (surprise) e.verdict = Verdict::NotLocalized;
     if (weak) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
@@ -89,6 +102,14 @@ bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) co
   const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
   e.verdict = tight(hypothesis.covariance) && !weak ? Verdict::Localized : Verdict::NotLocalized;
   return true;
+}
+
+bool Localizer::splits_off(const TrackedHypothesis& hypothesis, const Pose2& kept,
+                           const Pose2& winner) const {
+  const HypothesisSetOptions& set = options_.hypothesis_set;
+  const bool apart = std::hypot(winner.x - kept.x, winner.y - kept.y) > set.merge_xy ||
+                     std::abs(normalize_angle(winner.theta - kept.theta)) > set.merge_theta;
+  return options_.split_far_winners && laser_ && hypothesis.confirmed && apart;
 }
 
 bool Localizer::tight(const Eigen::Matrix3d& covariance) const {

@@ -65,6 +65,14 @@ struct LocalizerOptions {
   /// carried one, and the place stays `localized` while that is tight; it still counts as a
   /// miss toward a re-search. At or above miss_fit_ratio: no such rule.
   double weak_fit_ratio = 0.25;
+  /// A laser's window whose winner lies farther from the odometry's place than the hypothesis
+  /// set merges (0.3 m or 15 deg) and either farther than the place's covariance allows (a
+  /// surprising step) or where the odometry's place fits worse does not move the place: the
+  /// winner joins as a place of its own, weighted by the odometry's prior, and the weights
+  /// tell them apart over the next scans (a slip wins in a scan or two; a look-alike that
+  /// fits only a little better, as where the map's half saw a corridor differently, does
+  /// not). false: the place follows the winner, not `localized` at that scan.
+  bool split_far_winners = true;
   /// A window scoring below this share of the place's usual normalized score is not
   /// `localized`, whatever its own verdict: the scan fits the place worse than the scans
   /// before it did (a look-alike a corridor slid or turned the place into, or a view the map
@@ -251,8 +259,14 @@ class Localizer {
             const Observation& observation, bool newcomers) const;
   /// Whether the window `e` around a carried place explains the observation there, and
   /// where it puts the place: updates the place and sets e.verdict to the place's own.
+  /// A winner that LocalizerOptions::split_far_winners makes a place of its own is added to
+  /// `look_alikes` (when given) instead of moving the place.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
-             const SearchWindow& global) const;
+             const SearchWindow& global, std::vector<LookAlike>* look_alikes = nullptr) const;
+  /// Whether a window's winner at `winner` joins as a place of its own rather than moving
+  /// the place from `kept` (LocalizerOptions::split_far_winners).
+  bool splits_off(const TrackedHypothesis& hypothesis, const Pose2& kept,
+                  const Pose2& winner) const;
   /// A miss that still places the place (LocalizerOptions::weak_fit_ratio): when it does,
   /// moves the place there, fuses the covariances and sets e.verdict; else returns false.
   bool place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const;
