@@ -66,24 +66,24 @@ void BM_CorrelateKernel(benchmark::State& state, Path path) {
     double sum = 0.0;
     switch (path) {
       case Path::Float:
-        sum = correlate_scalar(c.grid.arc_view.data() + o, c.grid.grid.cells.data() + o, l);
+        sum = correlate_scalar(c.grid.arc_view().data() + o, c.grid.grid.cells.data() + o, l);
         break;
       case Path::Int8Float:
-        sum = correlate_scalar(c.grid.arc_view8.data() + o, c.grid.grid8.data() + o, l);
+        sum = correlate_scalar(c.grid.arc_view8().data() + o, c.grid.grid8.data() + o, l);
         break;
       case Path::FixedScalar:
         sum = static_cast<double>(
-            correlate_fixed_scalar(c.grid.arc_view8.data() + o, c.grid.grid8.data() + o,
+            correlate_fixed_scalar(c.grid.arc_view8().data() + o, c.grid.grid8.data() + o,
                                    l.offset.data(), l.fixed.data(), l.arc_count, l.offset.size()));
         break;
       case Path::FixedAvx512:
         sum = static_cast<double>(
-            correlate_fixed_avx512(c.grid.arc_view8.data() + o, c.grid.grid8.data() + o,
+            correlate_fixed_avx512(c.grid.arc_view8().data() + o, c.grid.grid8.data() + o,
                                    l.offset.data(), l.fixed.data(), l.arc_count, l.offset.size()));
         break;
       case Path::FixedAvx2:
         sum = static_cast<double>(
-            correlate_fixed_avx2(c.grid.arc_view8.data() + o, c.grid.grid8.data() + o,
+            correlate_fixed_avx2(c.grid.arc_view8().data() + o, c.grid.grid8.data() + o,
                                  l.offset.data(), l.fixed.data(), l.arc_count, l.offset.size()));
         break;
     }

@@ -35,7 +35,7 @@ std::pair<float, float> pooled_at(const PaddedGrid& padded, int level, int x, in
   float hi = -1e30f, lo = 1e30f;
   for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
     for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
-      hi = std::max(hi, padded.arc_view[padded.grid.geometry.index(xx, yy)]);
+      hi = std::max(hi, padded.arc_view()[padded.grid.geometry.index(xx, yy)]);
       lo = std::min(lo, padded.grid.at(xx, yy));
     }
   }

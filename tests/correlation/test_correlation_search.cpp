@@ -77,12 +77,36 @@ TEST(PadGrid, ArcViewClampsFreeCellsUnderTheNeutralRule) {
   const EvidenceGrid g = random_global(rng, 5, 6);
   const PaddedGrid neutral = pad_grid(g, 2, ArcRule::Neutral);
   const PaddedGrid signed_ = pad_grid(g, 2, ArcRule::Signed);
-  ASSERT_EQ(neutral.arc_view.size(), neutral.grid.cells.size());
+  ASSERT_EQ(neutral.arc_view().size(), neutral.grid.cells.size());
   for (std::size_t i = 0; i < neutral.grid.cells.size(); ++i) {
-    EXPECT_EQ(neutral.arc_view[i], std::max(neutral.grid.cells[i], 0.0f));
-    EXPECT_EQ(signed_.arc_view[i], signed_.grid.cells[i]);
+    EXPECT_EQ(neutral.arc_view()[i], std::max(neutral.grid.cells[i], 0.0f));
+    EXPECT_EQ(signed_.arc_view()[i], signed_.grid.cells[i]);
   }
   EXPECT_EQ(neutral.grid.cells, signed_.grid.cells);
+}
+
+// The arc view is a copy only where it differs from the grid: a Neutral grid with free
+// (negative) cells. A grid without negatives (a likelihood field) or the Signed rule reads
+// the grid's own cells, float and int8: no second copy of the padded grid.
+TEST(PadGrid, TheArcViewIsTheGridItselfWhereItEqualsIt) {
+  Rng rng(7);
+  const EvidenceGrid with_free = random_global(rng, 5, 6);
+  ASSERT_TRUE(std::any_of(with_free.cells.begin(), with_free.cells.end(),
+                          [](float v) { return v < 0.0f; }));
+  EvidenceGrid no_free = with_free;
+  for (float& v : no_free.cells) v = std::max(v, 0.0f);
+  const PaddedGrid neutral = pad_grid(with_free, 2, ArcRule::Neutral);
+  EXPECT_FALSE(neutral.arc_cells.empty());
+  EXPECT_NE(neutral.arc_view().data(), neutral.grid.cells.data());
+  for (const PaddedGrid& own :
+       {pad_grid(with_free, 2, ArcRule::Signed), pad_grid(no_free, 2, ArcRule::Neutral)}) {
+    EXPECT_TRUE(own.arc_cells.empty());
+    EXPECT_EQ(own.arc_view().data(), own.grid.cells.data());
+    ASSERT_TRUE(own.has_int8());
+    EXPECT_EQ(own.arc_view8().data(), own.grid8.data());
+  }
+  // The same arc view either way.
+  EXPECT_EQ(pad_grid(no_free, 2, ArcRule::Neutral).arc_view(), neutral.arc_view());
 }
 
 TEST(PadGrid, NegativeOrHugePaddingIsAnError) {

@@ -71,7 +71,7 @@ TEST(LikelihoodFieldSearch, PaddedFieldKeepsItsLevelsInInt8) {
   EXPECT_EQ(p.int8_scale, static_cast<float>(kFieldLevels));
   for (std::size_t i = 0; i < p.grid.cells.size(); ++i) {
     EXPECT_EQ(static_cast<float>(p.grid8[i]) / kFieldLevels, p.grid.cells[i]) << i;
-    EXPECT_EQ(static_cast<float>(p.arc_view8[i]) / kFieldLevels, p.arc_view[i]) << i;
+    EXPECT_EQ(static_cast<float>(p.arc_view8()[i]) / kFieldLevels, p.arc_view()[i]) << i;
   }
   // Thinned grids keep their -1/0/1 copies.
   const PaddedGrid t = pad_grid(make_thinned_evidence(m), 4);

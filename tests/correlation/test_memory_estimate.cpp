@@ -41,13 +41,15 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   const double padded = (100.0 + 46.0) * (80.0 + 46.0);
   // The map (1 B), the padded grid (10 B) and the unpadded build (6 B).
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 10.0 * padded + 6.0 * 8000.0);
-  // + 8 levels of 2 B (int8 only) and 2 B, pooling in two float working grids 8 B
+  // + 8 levels of 2 B (int8 only) and 1 B, pooling in two float working grids 8 B
   options.strategy = SearchStrategy::BranchAndBound;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 10.0 * padded + (2.0 * 8 + 2.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
-  options.global = GlobalModel::LikelihoodField;  // its levels keep their floats: 10 B each
+            8000.0 + 10.0 * padded + (2.0 * 8 + 1.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
+  // A likelihood field's padded grid is its arc view (5 B); its levels may keep their floats
+  // (10 B each).
+  options.global = GlobalModel::LikelihoodField;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 10.0 * padded + (10.0 * 8 + 2.0) * padded +
+            8000.0 + 5.0 * padded + (10.0 * 8 + 1.0) * padded +
                 std::max((6.0 + 8.0) * 8000, 8.0 * padded));
   options.global = CorrelationOptions{}.global;
   const double grids = correlation_memory_bytes(map, options, 1.0);
@@ -68,8 +70,8 @@ TEST(MemoryEstimate, CoversTheGridsBuilt) {
   options.strategy = SearchStrategy::Exhaustive;
   const CorrelationEstimator estimator(room(), load_sonar_ring(test::ring_path()), options);
   const PaddedGrid& g = estimator.level(0);
-  const double kept = 4.0 * (g.grid.cells.size() + g.arc_view.size()) +
-                      static_cast<double>(g.grid8.size() + g.arc_view8.size()) + 8000.0;
+  const double kept = 4.0 * (g.grid.cells.size() + g.arc_cells.size()) +
+                      static_cast<double>(g.grid8.size() + g.arc_cells8.size()) + 8000.0;
   const double estimate = correlation_memory_bytes(room().geometry, options,
                                                    load_sonar_ring(test::ring_path()).reach());
   EXPECT_GE(estimate, kept);

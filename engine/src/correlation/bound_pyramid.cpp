@@ -41,15 +41,16 @@ void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
   const std::size_t cells = global.grid.cells.size();
   for (int level = 1; level <= depth; ++level) {
     const int half = 1 << (level - 1);
-    std::vector<std::int8_t> arc = p.arc_max8.back();
+    // Level 0 is the padded grid's own int8 copy (BoundPyramid::arc_max8).
+    std::vector<std::int8_t> arc = level == 1 ? global.arc_view8() : p.arc_max8.back();
     max_pool_doubled_in_place(arc.data(), w, h, half);
     p.arc_max8.push_back(std::move(arc));
     if (p.min_levels) {
-      std::vector<std::int8_t> min = p.grid_min8.back();
+      std::vector<std::int8_t> min = level == 1 ? global.grid8 : p.grid_min8.back();
       min_pool_doubled_in_place(min.data(), w, h, half);
       p.grid_min8.push_back(std::move(min));
     } else if (level == 1) {  // the grid's minimum, standing for every level
-      std::vector<std::int8_t> min = p.grid_min8.front();
+      std::vector<std::int8_t> min(global.grid8.size(), 0);  // kGatherSlack zeros at the end
       std::fill_n(min.begin(), cells,
                   static_cast<std::int8_t>(std::lround(p.grid_min_all * p.int8_scale)));
       p.grid_min8.push_back(std::move(min));
@@ -66,7 +67,7 @@ void pool_float_levels(BoundPyramid& p, const PaddedGrid& global, int depth, boo
     return to_int8_with_slack(g.cells, p.int8_scale);
   };
   EvidenceGrid arc_work = global.grid, min_work = global.grid;
-  arc_work.cells = global.arc_view;
+  arc_work.cells = global.arc_view();
   // Without min levels, level 1 holds the whole grid's minimum and stands for every level.
   if (!p.min_levels) min_work.cells.assign(min_work.cells.size(), p.grid_min_all);
   for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
@@ -91,7 +92,7 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
     throw Error("bound pyramid: depth = " + std::to_string(depth) + " must lie in [0, " +
                 std::to_string(kMaxDepth) + "]");
   }
-  if (global.arc_view.size() != global.grid.cells.size()) {
+  if (global.arc_view().size() != global.grid.cells.size()) {
     throw Error("bound pyramid: the padded grid's arc_view does not match its grid");
   }
   BoundPyramid p;
@@ -101,15 +102,18 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
   p.height = global.height;
   p.arc_max.resize(static_cast<std::size_t>(depth) + 1);
   p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
-  fill_extremes(p, global.arc_view, global.grid.cells);
+  fill_extremes(p, global.arc_view(), global.grid.cells);
   // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
   const float scale = int8_scale_for(global.grid.cells);
-  const float arc_scale = int8_scale_for(global.arc_view);
+  const float arc_scale = int8_scale_for(global.arc_view());
   const bool int8 = scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale;
-  if (int8) {
+  if (int8 && !(global.has_int8() && global.int8_scale == scale)) {
+    throw Error("bound pyramid: the padded grid has no int8 copy at the pyramid's scale");
+  }
+  if (int8) {  // level 0 is the padded grid's int8 copy, not a second one
     p.int8_scale = scale;
-    p.arc_max8.push_back(to_int8_with_slack(global.arc_view, scale));
-    p.grid_min8.push_back(to_int8_with_slack(global.grid.cells, scale));
+    p.arc_max8.emplace_back();
+    p.grid_min8.emplace_back();
   }
   // A ternary pyramid's bounds read only its int8 levels (block_bound, interval_sum): 5x
   // less memory than float levels, and no page of a float grid to fault in per level.

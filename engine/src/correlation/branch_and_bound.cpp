@@ -75,16 +75,19 @@ class Search {
     points_ = options.heading_intervals ? grids.points() : nullptr;
     inv_res_ = 1.0 / global_.grid.geometry.resolution;
     width_ = global_.grid.width();
-    arc_levels_.push_back(global_.arc_view.data());
+    arc_levels_.push_back(global_.arc_view().data());
     min_levels_.push_back(global_.grid.cells.data());
     for (int h = 1; h <= pyramid_.depth(); ++h) {
       arc_levels_.push_back(pyramid_.arc_max[static_cast<std::size_t>(h)].cells.data());
       min_levels_.push_back(pyramid_.grid_min[pyramid_.min_level(h)].cells.data());
     }
-    for (std::size_t h = 0; h < pyramid_.arc_max8.size(); ++h) {
+    if (pyramid_.has_int8()) {  // level 0 is the padded grid's own int8 copy
+      arc8_levels_.push_back(global_.arc_view8().data());
+      min8_levels_.push_back(global_.grid8.data());
+    }
+    for (std::size_t h = 1; h < pyramid_.arc_max8.size(); ++h) {
       arc8_levels_.push_back(pyramid_.arc_max8[h].data());
-      min8_levels_.push_back(
-          pyramid_.grid_min8[h == 0 ? 0 : pyramid_.min_level(static_cast<int>(h))].data());
+      min8_levels_.push_back(pyramid_.grid_min8[pyramid_.min_level(static_cast<int>(h))].data());
     }
     if (points_ != nullptr) {
       double mass = 0.0;

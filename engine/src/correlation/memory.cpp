@@ -12,12 +12,15 @@ namespace {
 
 constexpr double kMapBytes = 1.0;            // CellState per map cell
 constexpr double kPaddedGridBytes = 10.0;    // grid + arc_view (float) + their int8 copies
+constexpr double kFieldPaddedBytes = 5.0;    // a likelihood field's: grid (float) + int8 copy,
+                                             // its arc view being the grid (no negatives)
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
 constexpr double kTernaryLevelBytes = 2.0;   // an evidence grid's levels: int8 only, pooled
                                              // in the two working grids of kPoolingBytes
-constexpr double kPyramidBaseBytes = 2.0;    // int8 copies of level 0
+constexpr double kPyramidBaseBytes = 1.0;    // level 0 is the padded grid's: 1 B for the
+                                             // minimum's level of a max-only pyramid
 constexpr double kPoolingBytes = 8.0;        // the two working grids pooled in place
 constexpr double kLocalCellBytes = 12.0;     // PlacedLocalGrid: offset, value, fixed (4 each)
 constexpr double kPointCellBytes = 16.0;     // PointCells: offset (8), x and y (4 + 4)
@@ -39,7 +42,9 @@ LevelBytes level_bytes(const GridGeometry& map, const CorrelationOptions& option
   const double cells = size.width * size.height;
   const double build =
       kBuildBytes + (options.global == GlobalModel::LikelihoodField ? kFieldBuildBytes : 0.0);
-  return {kPaddedGridBytes * size.padded_cells(), build * cells};
+  const double padded =
+      options.global == GlobalModel::LikelihoodField ? kFieldPaddedBytes : kPaddedGridBytes;
+  return {padded * size.padded_cells(), build * cells};
 }
 
 /// The bound pyramid of the finest grid: what it keeps, and what pooling it needs on top.

@@ -66,16 +66,18 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
   for (int iy = 0; iy < grid.height(); ++iy) {
     std::copy(grid.row(iy), grid.row(iy) + grid.width(), p.grid.row(iy + pad) + pad);
   }
-  p.arc_view = p.grid.cells;
-  if (rule == ArcRule::Neutral) {
-    for (float& v : p.arc_view) v = std::max(v, 0.0f);
+  const bool negatives =
+      std::any_of(p.grid.cells.begin(), p.grid.cells.end(), [](float v) { return v < 0.0f; });
+  if (rule == ArcRule::Neutral && negatives) {
+    p.arc_cells = p.grid.cells;
+    for (float& v : p.arc_cells) v = std::max(v, 0.0f);
   }
-  // arc_view = max(grid, 0) takes its values from the grid: one scale serves both.
+  // The arc view = max(grid, 0) takes its values from the grid: one scale serves both.
   const float scale = int8_scale_for(p.grid.cells);
   if (scale > 0.0f) {
     p.int8_scale = scale;
-    p.arc_view8 = to_int8_with_slack(p.arc_view, scale);
     p.grid8 = to_int8_with_slack(p.grid.cells, scale);
+    if (!p.arc_cells.empty()) p.arc_cells8 = to_int8_with_slack(p.arc_cells, scale);
   }
   return p;
 }

@@ -37,10 +37,10 @@ struct BoundPyramid {
   float abs_max = 0.0f;       ///< max |value| of the grid and arc view (rounding slack)
   /// When every value of the grid is a whole multiple of 1 / s for the int8_scale s of
   /// int8_scale_for (-1/0/1 evidence grids: s = 1; a likelihood field: kFieldLevels):
-  /// levels 0..depth again as int8 times s ([0] = the arc view and the grid themselves),
-  /// which the bounds read: the same values from 4x less memory, so the same sums with fewer
-  /// cache misses, and from the fixed-point kernel's integer lanes. Each ends in
-  /// kGatherSlack bytes. Empty otherwise.
+  /// levels 0..depth again as int8 times s, which the bounds read: the same values from 4x
+  /// less memory, so the same sums with fewer cache misses, and from the fixed-point
+  /// kernel's integer lanes. Each ends in kGatherSlack bytes. [0] is empty: level 0 is the
+  /// PaddedGrid's own int8 copies (arc_view8(), grid8), read from there. Empty otherwise.
   std::vector<std::vector<std::int8_t>> arc_max8;
   std::vector<std::vector<std::int8_t>> grid_min8;
   float int8_scale = 1.0f;

@@ -25,15 +25,18 @@ namespace gridloc {
 enum class ArcRule { Neutral, Signed };
 
 /// A global grid padded with `pad` unknown (0) cells on every side, so that any local grid
-/// of extent <= pad placed on any cell of the map needs no bounds checks. `arc_view` is the
-/// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed.
+/// of extent <= pad placed on any cell of the map needs no bounds checks. arc_view() is the
+/// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed. When
+/// it equals the grid (Signed, or no negative cell: a likelihood field) it is the grid's own
+/// cells, not a copy: 5 bytes a padded cell less.
 struct PaddedGrid {
   EvidenceGrid grid;  ///< the padded grid; map cell (ix, iy) is grid cell (ix + pad, iy + pad)
-  std::vector<float> arc_view;
-  /// int8 copies of arc_view and grid times int8_scale (plus kGatherSlack readable bytes)
-  /// when every value of both is a whole multiple of 1 / int8_scale (int8_scale_for); empty
-  /// otherwise. score() reads them with the fixed-point kernel.
-  std::vector<std::int8_t> arc_view8, grid8;
+  /// The arc view's own cells when it differs from the grid; empty otherwise (arc_view()).
+  std::vector<float> arc_cells;
+  /// int8 copies of the grid and of arc_cells times int8_scale (plus kGatherSlack readable
+  /// bytes) when every value of the grid is a whole multiple of 1 / int8_scale
+  /// (int8_scale_for); empty otherwise. score() reads them with the fixed-point kernel.
+  std::vector<std::int8_t> grid8, arc_cells8;
   /// 1 for -1/0/1 evidence grids, kFieldLevels for a likelihood field (see int8_scale_for).
   float int8_scale = 1.0f;
   int pad = 0;
@@ -42,6 +45,12 @@ struct PaddedGrid {
   bool has_int8() const { return !grid8.empty(); }
   /// int8 copies of a grid whose values are all -1, 0 or 1.
   bool ternary() const { return has_int8() && int8_scale == 1.0f; }
+  /// The cells arc cells read, one per grid cell.
+  const std::vector<float>& arc_view() const { return arc_cells.empty() ? grid.cells : arc_cells; }
+  /// Their int8 copy (has_int8() only), followed by kGatherSlack bytes.
+  const std::vector<std::int8_t>& arc_view8() const {
+    return arc_cells.empty() ? grid8 : arc_cells8;
+  }
 };
 
 /// The scale s that makes every value v of `cells` a whole number v * s in [-127, 127] that
@@ -136,10 +145,10 @@ inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int 
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
   if (global.has_int8() && local.fixed_shift >= 0) {
-    return correlate(global.arc_view8.data() + origin, global.grid8.data() + origin, local) /
+    return correlate(global.arc_view8().data() + origin, global.grid8.data() + origin, local) /
            static_cast<double>(global.int8_scale);
   }
-  return correlate(global.arc_view.data() + origin, global.grid.cells.data() + origin, local);
+  return correlate(global.arc_view().data() + origin, global.grid.cells.data() + origin, local);
 }
 
 /// A candidate of the search lattice: map cell and heading index.
