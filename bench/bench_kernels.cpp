@@ -60,13 +60,14 @@ void BM_CorrelateKernel(benchmark::State& state, Path path) {
     return;
   }
   const PlacedLocalGrid& l = c.local;
+  const std::vector<float> arc = c.grid.arc_float_cells(), all = c.grid.float_cells();
   std::size_t i = 0;
   for (auto _ : state) {
     const std::ptrdiff_t o = c.origins[i++ % c.origins.size()];
     double sum = 0.0;
     switch (path) {
       case Path::Float:
-        sum = correlate_scalar(c.grid.arc_view().data() + o, c.grid.grid.cells.data() + o, l);
+        sum = correlate_scalar(arc.data() + o, all.data() + o, l);
         break;
       case Path::Int8Float:
         sum = correlate_scalar(c.grid.arc_view8().data() + o, c.grid.grid8.data() + o, l);

@@ -106,7 +106,9 @@ void paint_local_on_global(cv::Mat& img, const View& view, const PaddedGrid& glo
       const int ix = static_cast<int>(std::floor(p.x / res));
       const int iy = static_cast<int>(std::floor(p.y / res));
       float G = 0.0f;
-      if (global.grid.geometry.contains(ix + pad, iy + pad)) G = global.grid.at(ix + pad, iy + pad);
+      if (global.grid.geometry.contains(ix + pad, iy + pad)) {
+        G = global.cell(global.grid.geometry.index(ix + pad, iy + pad));
+      }
       row[c] = grey(G > 0.0f ? kOccupiedGrey : (G < 0.0f ? kFreeGrey : kUnknownGrey));
       const int dx = ix - robot.ix - b.lx0, dy = iy - robot.iy - b.ly0;
       if (dx < 0 || dy < 0 || dx >= lw || dy > b.ly1 - b.ly0) continue;

@@ -35,8 +35,8 @@ std::pair<float, float> pooled_at(const PaddedGrid& padded, int level, int x, in
   float hi = -1e30f, lo = 1e30f;
   for (int yy = y; yy < std::min(h, y + (1 << level)); ++yy) {
     for (int xx = x; xx < std::min(w, x + (1 << level)); ++xx) {
-      hi = std::max(hi, padded.arc_view()[padded.grid.geometry.index(xx, yy)]);
-      lo = std::min(lo, padded.grid.at(xx, yy));
+      hi = std::max(hi, padded.arc_cell(padded.grid.geometry.index(xx, yy)));
+      lo = std::min(lo, padded.cell(padded.grid.geometry.index(xx, yy)));
     }
   }
   return {hi, lo};
@@ -114,7 +114,7 @@ TEST(BoundPyramid, MaxOnlyKeepsOneLevelOfTheGridsMinimum) {
     EXPECT_EQ(p.min_level(3), 1u);
     EXPECT_EQ(p.grid_min_all, both.grid_min_all);
     EXPECT_EQ(p.arc_max8, both.arc_max8);
-    const std::size_t cells = padded.grid.cells.size();
+    const std::size_t cells = padded.cell_count();
     if (p.has_int8()) {
       ASSERT_EQ(p.grid_min8.size(), 2u);  // level 0 (the grid) and the minimum's level
       EXPECT_EQ(p.grid_min8[0], both.grid_min8[0]);

@@ -65,7 +65,8 @@ TEST(PadGrid, CopiesTheGridInsideZeroPadding) {
   for (int iy = 0; iy < 10; ++iy) {
     for (int ix = 0; ix < 13; ++ix) {
       const bool inside = ix >= 3 && ix < 10 && iy >= 3 && iy < 7;
-      EXPECT_EQ(p.grid.at(ix, iy), inside ? g.at(ix - 3, iy - 3) : 0.0f) << ix << "," << iy;
+      EXPECT_EQ(p.cell(p.grid.geometry.index(ix, iy)), inside ? g.at(ix - 3, iy - 3) : 0.0f)
+          << ix << "," << iy;
     }
   }
 }
@@ -77,18 +78,20 @@ TEST(PadGrid, ArcViewClampsFreeCellsUnderTheNeutralRule) {
   const EvidenceGrid g = random_global(rng, 5, 6);
   const PaddedGrid neutral = pad_grid(g, 2, ArcRule::Neutral);
   const PaddedGrid signed_ = pad_grid(g, 2, ArcRule::Signed);
-  ASSERT_EQ(neutral.arc_view().size(), neutral.grid.cells.size());
-  for (std::size_t i = 0; i < neutral.grid.cells.size(); ++i) {
-    EXPECT_EQ(neutral.arc_view()[i], std::max(neutral.grid.cells[i], 0.0f));
-    EXPECT_EQ(signed_.arc_view()[i], signed_.grid.cells[i]);
+  ASSERT_EQ(neutral.cell_count(), 9u * 10u);
+  for (std::size_t i = 0; i < neutral.cell_count(); ++i) {
+    EXPECT_EQ(neutral.arc_cell(i), std::max(neutral.cell(i), 0.0f));
+    EXPECT_EQ(signed_.arc_cell(i), signed_.cell(i));
   }
-  EXPECT_EQ(neutral.grid.cells, signed_.grid.cells);
+  EXPECT_EQ(neutral.float_cells(), signed_.float_cells());
+  EXPECT_EQ(neutral.arc_float_cells().size(), neutral.cell_count());
 }
 
-// The arc view is a copy only where it differs from the grid: a Neutral grid with free
-// (negative) cells. A grid without negatives (a likelihood field) or the Signed rule reads
-// the grid's own cells, float and int8: no second copy of the padded grid.
-TEST(PadGrid, TheArcViewIsTheGridItselfWhereItEqualsIt) {
+// The cells are kept once: as int8 where they are whole multiples of 1 / int8_scale (a
+// -1/0/1 grid; no float copy), as floats otherwise. The arc view is a copy only where it
+// differs from the grid: a Neutral grid with free (negative) cells; a grid without
+// negatives (a likelihood field with free_value 0) or the Signed rule reads the grid's own.
+TEST(PadGrid, KeepsEachGridOnceAndTheArcViewOnlyWhereItDiffers) {
   Rng rng(7);
   const EvidenceGrid with_free = random_global(rng, 5, 6);
   ASSERT_TRUE(std::any_of(with_free.cells.begin(), with_free.cells.end(),
@@ -96,17 +99,27 @@ TEST(PadGrid, TheArcViewIsTheGridItselfWhereItEqualsIt) {
   EvidenceGrid no_free = with_free;
   for (float& v : no_free.cells) v = std::max(v, 0.0f);
   const PaddedGrid neutral = pad_grid(with_free, 2, ArcRule::Neutral);
-  EXPECT_FALSE(neutral.arc_cells.empty());
-  EXPECT_NE(neutral.arc_view().data(), neutral.grid.cells.data());
+  ASSERT_TRUE(neutral.ternary());
+  EXPECT_TRUE(neutral.grid.cells.empty());  // no float copy
+  EXPECT_FALSE(neutral.arc_is_grid);
+  EXPECT_FALSE(neutral.arc_cells8.empty());
   for (const PaddedGrid& own :
        {pad_grid(with_free, 2, ArcRule::Signed), pad_grid(no_free, 2, ArcRule::Neutral)}) {
-    EXPECT_TRUE(own.arc_cells.empty());
-    EXPECT_EQ(own.arc_view().data(), own.grid.cells.data());
-    ASSERT_TRUE(own.has_int8());
+    EXPECT_TRUE(own.arc_is_grid);
+    EXPECT_TRUE(own.arc_cells8.empty());
     EXPECT_EQ(own.arc_view8().data(), own.grid8.data());
   }
-  // The same arc view either way.
-  EXPECT_EQ(pad_grid(no_free, 2, ArcRule::Neutral).arc_view(), neutral.arc_view());
+  EXPECT_EQ(pad_grid(no_free, 2, ArcRule::Neutral).arc_float_cells(), neutral.arc_float_cells());
+  // Values no int8 scale holds stay floats, the arc view its own copy under Neutral.
+  EvidenceGrid fractions = with_free;
+  for (float& v : fractions.cells) v *= 0.3f;
+  const PaddedGrid floats = pad_grid(fractions, 2, ArcRule::Neutral);
+  EXPECT_FALSE(floats.has_int8());
+  EXPECT_EQ(floats.grid.cells.size(), floats.cell_count());
+  EXPECT_EQ(floats.arc_cells.size(), floats.cell_count());
+  for (std::size_t i = 0; i < floats.cell_count(); ++i) {
+    EXPECT_EQ(floats.arc_cell(i), std::max(floats.cell(i), 0.0f));
+  }
 }
 
 TEST(PadGrid, NegativeOrHugePaddingIsAnError) {

@@ -65,13 +65,19 @@ SearchLevel level_of(const PaddedGrid& padded, const std::vector<SparseLocalGrid
 TEST(LikelihoodFieldSearch, PaddedFieldKeepsItsLevelsInInt8) {
   std::mt19937 rng(3);
   const OccupancyMap m = random_map(rng, 30, 20, 0.1);
-  const PaddedGrid p = pad_grid(make_likelihood_field(m, {}), 4);
+  const EvidenceGrid field = make_likelihood_field(m, {});
+  const PaddedGrid p = pad_grid(field, 4);
   ASSERT_TRUE(p.has_int8());
   EXPECT_FALSE(p.ternary());
+  EXPECT_TRUE(p.grid.cells.empty());  // the int8 cells stand for the floats
   EXPECT_EQ(p.int8_scale, static_cast<float>(kFieldLevels));
-  for (std::size_t i = 0; i < p.grid.cells.size(); ++i) {
-    EXPECT_EQ(static_cast<float>(p.grid8[i]) / kFieldLevels, p.grid.cells[i]) << i;
-    EXPECT_EQ(static_cast<float>(p.arc_view8()[i]) / kFieldLevels, p.arc_view()[i]) << i;
+  for (int iy = 0; iy < field.height(); ++iy) {
+    for (int ix = 0; ix < field.width(); ++ix) {
+      const std::size_t i = p.grid.geometry.index(ix + 4, iy + 4);
+      EXPECT_EQ(static_cast<float>(p.grid8[i]) / kFieldLevels, field.at(ix, iy));
+      EXPECT_EQ(static_cast<float>(p.arc_view8()[i]) / kFieldLevels,
+                std::max(field.at(ix, iy), 0.0f));
+    }
   }
   // Thinned grids keep their -1/0/1 copies.
   const PaddedGrid t = pad_grid(make_thinned_evidence(m), 4);

@@ -39,17 +39,16 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   options.resolution = 0.05;
   options.strategy = SearchStrategy::Exhaustive;
   const double padded = (100.0 + 46.0) * (80.0 + 46.0);
-  // The map (1 B), the padded grid (10 B) and the unpadded build (6 B).
-  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 10.0 * padded + 6.0 * 8000.0);
+  // The map (1 B), the padded grid (2 B: int8) and the unpadded build (6 B).
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 2.0 * padded + 6.0 * 8000.0);
   // + 8 levels of 2 B (int8 only) and 1 B, pooling in two float working grids 8 B
   options.strategy = SearchStrategy::BranchAndBound;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 10.0 * padded + (2.0 * 8 + 1.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
-  // A likelihood field's padded grid is its arc view (5 B); its levels may keep their floats
-  // (10 B each).
+            8000.0 + 2.0 * padded + (2.0 * 8 + 1.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
+  // A likelihood field's levels may keep their floats (10 B each).
   options.global = GlobalModel::LikelihoodField;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 5.0 * padded + (10.0 * 8 + 1.0) * padded +
+            8000.0 + 2.0 * padded + (10.0 * 8 + 1.0) * padded +
                 std::max((6.0 + 8.0) * 8000, 8.0 * padded));
   options.global = CorrelationOptions{}.global;
   const double grids = correlation_memory_bytes(map, options, 1.0);
@@ -87,9 +86,9 @@ TEST(MemoryEstimate, AFineResolutionIsRefusedBeforeItIsBuilt) {
   test::expect_error([&] { CorrelationEstimator(map, ring, options); },
                      {"global grid at 0.0001 m", "cells exceeds the limit", "--max-cells"});
   options.resolution = 0.004;  // the cells fit, the bound pyramid does not
-  options.limits.max_memory_mb = 1000;
+  options.limits.max_memory_mb = 300;
   test::expect_error([&] { CorrelationEstimator(map, ring, options); },
-                     {"map at 0.004 m", "MB, more than the limit of 1000 MB", "--max-memory-mb"});
+                     {"map at 0.004 m", "MB, more than the limit of 300 MB", "--max-memory-mb"});
   options.resolution = 0.1;
   options.limits.max_memory_mb = 1;
   test::expect_error([&] { CorrelationEstimator(map, ring, options); }, {"--max-memory-mb"});

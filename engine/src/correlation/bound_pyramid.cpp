@@ -16,14 +16,30 @@ namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
 
-/// BoundPyramid::arc_max_all, grid_min_all and abs_max of the level-0 grids.
-void fill_extremes(BoundPyramid& p, const std::vector<float>& arc, const std::vector<float>& grid) {
-  if (!arc.empty()) {
-    p.arc_max_all = *std::max_element(arc.begin(), arc.end());
-    p.grid_min_all = *std::min_element(grid.begin(), grid.end());
+/// BoundPyramid::arc_max_all, grid_min_all and abs_max of the first n cells of an arc view
+/// and a grid, each value read through `value` (a decode: monotone).
+template <typename T, typename Value>
+void fill_extremes(BoundPyramid& p, const T* arc, const T* grid, std::size_t n, Value value) {
+  if (n == 0) return;
+  const auto [arc_min, arc_max] = std::minmax_element(arc, arc + n);
+  const auto [grid_min, grid_max] = std::minmax_element(grid, grid + n);
+  p.arc_max_all = value(*arc_max);
+  p.grid_min_all = value(*grid_min);
+  for (const T* v : {arc_min, arc_max, grid_min, grid_max}) {
+    p.abs_max = std::max(p.abs_max, std::abs(value(*v)));
   }
-  for (float v : arc) p.abs_max = std::max(p.abs_max, std::abs(v));
-  for (float v : grid) p.abs_max = std::max(p.abs_max, std::abs(v));
+}
+
+/// The same of the padded grid, from whichever cells it keeps.
+void fill_extremes(BoundPyramid& p, const PaddedGrid& global) {
+  const std::size_t n = global.cell_count();
+  if (global.has_int8()) {
+    fill_extremes(p, global.arc_view8().data(), global.grid8.data(), n,
+                  [&global](std::int8_t v) { return global.decode(v); });
+  } else {
+    fill_extremes(p, global.arc_view().data(), global.grid.cells.data(), n,
+                  [](float v) { return v; });
+  }
 }
 
 /// `grid` with its geometry and no cells: a level the bounds read only as int8.
@@ -38,7 +54,7 @@ EvidenceGrid geometry_only(const EvidenceGrid& grid) {
 /// (pooling commutes with the exact int8 map).
 void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
   const int w = global.grid.width(), h = global.grid.height();
-  const std::size_t cells = global.grid.cells.size();
+  const std::size_t cells = global.cell_count();
   for (int level = 1; level <= depth; ++level) {
     const int half = 1 << (level - 1);
     // Level 0 is the padded grid's own int8 copy (BoundPyramid::arc_max8).
@@ -66,8 +82,9 @@ void pool_float_levels(BoundPyramid& p, const PaddedGrid& global, int depth, boo
   const auto to_int8 = [&p](const EvidenceGrid& g) {
     return to_int8_with_slack(g.cells, p.int8_scale);
   };
-  EvidenceGrid arc_work = global.grid, min_work = global.grid;
-  arc_work.cells = global.arc_view();
+  EvidenceGrid arc_work = geometry_only(global.grid), min_work = geometry_only(global.grid);
+  arc_work.cells = global.arc_float_cells();
+  min_work.cells = global.float_cells();
   // Without min levels, level 1 holds the whole grid's minimum and stands for every level.
   if (!p.min_levels) min_work.cells.assign(min_work.cells.size(), p.grid_min_all);
   for (int h = 1; h <= depth; ++h) {  // each level from the one below: 2 ops per cell
@@ -92,9 +109,6 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
     throw Error("bound pyramid: depth = " + std::to_string(depth) + " must lie in [0, " +
                 std::to_string(kMaxDepth) + "]");
   }
-  if (global.arc_view().size() != global.grid.cells.size()) {
-    throw Error("bound pyramid: the padded grid's arc_view does not match its grid");
-  }
   BoundPyramid p;
   p.min_levels = levels == PyramidLevels::MaxAndMin;
   p.pad = global.pad;
@@ -102,16 +116,11 @@ BoundPyramid make_bound_pyramid(const PaddedGrid& global, int depth, PyramidLeve
   p.height = global.height;
   p.arc_max.resize(static_cast<std::size_t>(depth) + 1);
   p.grid_min.resize(static_cast<std::size_t>(depth) + 1);
-  fill_extremes(p, global.arc_view(), global.grid.cells);
-  // One scale for both (-1/0/1 values are whole levels too); pooling keeps values: levels too.
-  const float scale = int8_scale_for(global.grid.cells);
-  const float arc_scale = int8_scale_for(global.arc_view());
-  const bool int8 = scale > 0.0f && arc_scale > 0.0f && arc_scale <= scale;
-  if (int8 && !(global.has_int8() && global.int8_scale == scale)) {
-    throw Error("bound pyramid: the padded grid has no int8 copy at the pyramid's scale");
-  }
-  if (int8) {  // level 0 is the padded grid's int8 copy, not a second one
-    p.int8_scale = scale;
+  fill_extremes(p, global);
+  // The padded grid's int8 scale serves its arc view too; pooling keeps values: levels too.
+  const bool int8 = global.has_int8();
+  if (int8) {  // level 0 is the padded grid's int8 cells, not a second copy
+    p.int8_scale = global.int8_scale;
     p.arc_max8.emplace_back();
     p.grid_min8.emplace_back();
   }

@@ -11,9 +11,8 @@ namespace gridloc {
 namespace {
 
 constexpr double kMapBytes = 1.0;            // CellState per map cell
-constexpr double kPaddedGridBytes = 10.0;    // grid + arc_view (float) + their int8 copies
-constexpr double kFieldPaddedBytes = 5.0;    // a likelihood field's: grid (float) + int8 copy,
-                                             // its arc view being the grid (no negatives)
+constexpr double kPaddedGridBytes = 2.0;     // the grid and its arc view as int8: every
+                                             // global model's values are whole multiples
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
@@ -42,9 +41,7 @@ LevelBytes level_bytes(const GridGeometry& map, const CorrelationOptions& option
   const double cells = size.width * size.height;
   const double build =
       kBuildBytes + (options.global == GlobalModel::LikelihoodField ? kFieldBuildBytes : 0.0);
-  const double padded =
-      options.global == GlobalModel::LikelihoodField ? kFieldPaddedBytes : kPaddedGridBytes;
-  return {padded * size.padded_cells(), build * cells};
+  return {kPaddedGridBytes * size.padded_cells(), build * cells};
 }
 
 /// The bound pyramid of the finest grid: what it keeps, and what pooling it needs on top.

@@ -40,12 +40,14 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 /// adds. Per cell, measured on the code (engine/src/correlation/memory.cpp lists each term):
 ///  - the map itself: 1 byte a map cell (CellState);
 ///  - each global grid built (1, or options.levels for Multires), per padded cell: the
-///    padded evidence grid and its arc view (float, 4 + 4) and their int8 copies (1 + 1);
-///    while building, per unpadded cell: the resampled map and its flags (1 + 1) and the
-///    unpadded grid (4), plus the squared distances of a likelihood field (8);
-///  - branch and bound's bound pyramid of the finest grid, per padded cell: 10 bytes a level
-///    (max and min pooled floats, 4 + 4, and their int8 copies) times bound_pyramid_depth,
-///    plus the int8 copies of level 0 (2), and 8 more while a level is pooled;
+///    padded grid and its arc view as int8 (1 + 1: every global model's values are whole
+///    multiples of 1 / int8_scale); while building, per unpadded cell: the resampled map and
+///    its flags (1 + 1) and the unpadded grid (4), plus the squared distances of a
+///    likelihood field (8);
+///  - branch and bound's bound pyramid of the finest grid, per padded cell: a level of an
+///    evidence grid 2 bytes (max and min pooled int8), of a likelihood field 10 (their floats
+///    too, 4 + 4) times bound_pyramid_depth, plus 1 (the minimum's level of a max-only
+///    pyramid; level 0 is the padded grid's), and 8 more while a level is pooled;
 ///  - a search: per heading its placed local grid (12 bytes a cell: offset, value, fixed
 ///    point), a rigid scan's point cells (16 bytes a point) and 300 bytes of bookkeeping;
 ///    per pose kept (SearchSize::every_pose) 32 bytes (the scored pose and its volume score).

@@ -25,32 +25,47 @@ namespace gridloc {
 enum class ArcRule { Neutral, Signed };
 
 /// A global grid padded with `pad` unknown (0) cells on every side, so that any local grid
-/// of extent <= pad placed on any cell of the map needs no bounds checks. arc_view() is the
-/// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed. When
-/// it equals the grid (Signed, or no negative cell: a likelihood field) it is the grid's own
-/// cells, not a copy: 5 bytes a padded cell less.
+/// of extent <= pad placed on any cell of the map needs no bounds checks. The arc view is the
+/// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed.
+/// The cells are kept once: as int8 times int8_scale when every value is a whole multiple of
+/// 1 / int8_scale (int8_scale_for: a -1/0/1 evidence grid, a likelihood field), which give
+/// the floats back exactly (cell(), float_cells()); as floats otherwise. The arc view is its
+/// own copy only where it differs from the grid (Neutral with negative cells).
 struct PaddedGrid {
-  EvidenceGrid grid;  ///< the padded grid; map cell (ix, iy) is grid cell (ix + pad, iy + pad)
-  /// The arc view's own cells when it differs from the grid; empty otherwise (arc_view()).
+  /// The padded grid's geometry (map cell (ix, iy) is grid cell (ix + pad, iy + pad)); its
+  /// cells only when there is no int8 copy (empty when has_int8()).
+  EvidenceGrid grid;
+  /// The arc view's floats where it differs from the grid and there is no int8 copy.
   std::vector<float> arc_cells;
-  /// int8 copies of the grid and of arc_cells times int8_scale (plus kGatherSlack readable
-  /// bytes) when every value of the grid is a whole multiple of 1 / int8_scale
-  /// (int8_scale_for); empty otherwise. score() reads them with the fixed-point kernel.
+  /// The grid and the arc view (where it differs) as int8 times int8_scale, each followed by
+  /// kGatherSlack readable bytes; empty when the values are not whole multiples.
   std::vector<std::int8_t> grid8, arc_cells8;
   /// 1 for -1/0/1 evidence grids, kFieldLevels for a likelihood field (see int8_scale_for).
   float int8_scale = 1.0f;
   int pad = 0;
-  int width = 0;   ///< the unpadded map's width, cells
-  int height = 0;  ///< the unpadded map's height, cells
+  int width = 0;            ///< the unpadded map's width, cells
+  int height = 0;           ///< the unpadded map's height, cells
+  bool arc_is_grid = true;  ///< the arc view equals the grid (Signed, or no negative cell)
+
   bool has_int8() const { return !grid8.empty(); }
   /// int8 copies of a grid whose values are all -1, 0 or 1.
   bool ternary() const { return has_int8() && int8_scale == 1.0f; }
-  /// The cells arc cells read, one per grid cell.
-  const std::vector<float>& arc_view() const { return arc_cells.empty() ? grid.cells : arc_cells; }
-  /// Their int8 copy (has_int8() only), followed by kGatherSlack bytes.
-  const std::vector<std::int8_t>& arc_view8() const {
-    return arc_cells.empty() ? grid8 : arc_cells8;
+  /// Cells of the padded grid.
+  std::size_t cell_count() const { return grid.geometry.size(); }
+  /// The arc view's floats: only without int8 cells (empty otherwise; see arc_float_cells).
+  const std::vector<float>& arc_view() const { return arc_is_grid ? grid.cells : arc_cells; }
+  /// The arc view as int8 (has_int8() only), followed by kGatherSlack bytes.
+  const std::vector<std::int8_t>& arc_view8() const { return arc_is_grid ? grid8 : arc_cells8; }
+  /// The float an int8 cell stands for, exactly (int8_scale_for).
+  float decode(std::int8_t v) const { return static_cast<float>(v) / int8_scale; }
+  /// The grid's and the arc view's value at flat index i, whichever way they are kept.
+  float cell(std::size_t i) const { return has_int8() ? decode(grid8[i]) : grid.cells[i]; }
+  float arc_cell(std::size_t i) const {
+    return has_int8() ? decode(arc_view8()[i]) : arc_view()[i];
   }
+  /// Every cell of the grid and of the arc view as floats (a copy).
+  std::vector<float> float_cells() const;
+  std::vector<float> arc_float_cells() const;
 };
 
 /// The scale s that makes every value v of `cells` a whole number v * s in [-127, 127] that
@@ -119,6 +134,23 @@ double correlate_scalar(const T* arc, const T* all, const PlacedLocalGrid& local
   return positive + negative;
 }
 
+/// correlate_scalar over int8 cells standing for v / scale: each term reads the float the
+/// cell stands for (PaddedGrid::decode), so the sums are those of the float grid, bit for bit.
+inline double correlate_scalar_decoded(const std::int8_t* arc, const std::int8_t* all,
+                                       const PlacedLocalGrid& local, float scale) {
+  double positive = 0.0, negative = 0.0;
+  const std::size_t n = local.value.size();
+  for (std::size_t k = 0; k < local.arc_count; ++k) {
+    positive +=
+        static_cast<double>(local.value[k] * (static_cast<float>(arc[local.offset[k]]) / scale));
+  }
+  for (std::size_t k = local.arc_count; k < n; ++k) {
+    negative +=
+        static_cast<double>(local.value[k] * (static_cast<float>(all[local.offset[k]]) / scale));
+  }
+  return positive + negative;
+}
+
 template <typename T>
 double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
   return correlate_scalar(arc, all, local);
@@ -144,11 +176,17 @@ inline double correlate(const std::int8_t* arc, const std::int8_t* all,
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
-  if (global.has_int8() && local.fixed_shift >= 0) {
-    return correlate(global.arc_view8().data() + origin, global.grid8.data() + origin, local) /
-           static_cast<double>(global.int8_scale);
+  if (!global.has_int8()) {
+    return correlate(global.arc_view().data() + origin, global.grid.cells.data() + origin, local);
   }
-  return correlate(global.arc_view().data() + origin, global.grid.cells.data() + origin, local);
+  const std::int8_t* arc = global.arc_view8().data() + origin;
+  const std::int8_t* all = global.grid8.data() + origin;
+  if (local.fixed_shift >= 0) {
+    return correlate(arc, all, local) / static_cast<double>(global.int8_scale);
+  }
+  // A float local grid reads the floats the int8 cells stand for: cast (scale 1) or decoded.
+  if (global.int8_scale == 1.0f) return correlate_scalar(arc, all, local);
+  return correlate_scalar_decoded(arc, all, local, global.int8_scale);
 }
 
 /// A candidate of the search lattice: map cell and heading index.
