@@ -39,16 +39,19 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   options.resolution = 0.05;
   options.strategy = SearchStrategy::Exhaustive;
   const double padded = (100.0 + 46.0) * (80.0 + 46.0);
-  // The map (1 B), the padded grid (2 B: int8) and the unpadded build (6 B).
-  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 2.0 * padded + 6.0 * 8000.0);
+  // The map (1 B), the padded grid (int8 and floats: 10 B) and the unpadded build (6 B).
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 10.0 * padded + 6.0 * 8000.0);
+  // A laser's estimator keeps the int8 cells alone: 2 B.
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, false),
+            8000.0 + 2.0 * padded + 6.0 * 8000.0);
   // + 8 levels of 2 B (int8 only) and 1 B, pooling in two float working grids 8 B
   options.strategy = SearchStrategy::BranchAndBound;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 2.0 * padded + (2.0 * 8 + 1.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
+            8000.0 + 10.0 * padded + (2.0 * 8 + 1.0) * padded + std::max(6.0 * 8000, 8.0 * padded));
   // A likelihood field's levels may keep their floats (10 B each).
   options.global = GlobalModel::LikelihoodField;
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
-            8000.0 + 2.0 * padded + (10.0 * 8 + 1.0) * padded +
+            8000.0 + 10.0 * padded + (10.0 * 8 + 1.0) * padded +
                 std::max((6.0 + 8.0) * 8000, 8.0 * padded));
   options.global = CorrelationOptions{}.global;
   const double grids = correlation_memory_bytes(map, options, 1.0);

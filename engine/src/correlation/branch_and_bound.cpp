@@ -75,10 +75,10 @@ class Search {
     points_ = options.heading_intervals ? grids.points() : nullptr;
     inv_res_ = 1.0 / global_.grid.geometry.resolution;
     width_ = global_.grid.width();
-    // Level 0 as floats: none when the grid keeps int8 cells. interval_sum never reads it
-    // (a heading interval widens its block: level >= 2), block_bound starts at level 1.
-    arc_levels_.push_back(global_.has_int8() ? nullptr : global_.arc_view().data());
-    min_levels_.push_back(global_.has_int8() ? nullptr : global_.grid.cells.data());
+    // Level 0 as floats: none when the grid keeps int8 cells alone. interval_sum never reads
+    // it (a heading interval widens its block: level >= 2), block_bound starts at level 1.
+    arc_levels_.push_back(global_.has_floats() ? global_.arc_view().data() : nullptr);
+    min_levels_.push_back(global_.has_floats() ? global_.grid.cells.data() : nullptr);
     for (int h = 1; h <= pyramid_.depth(); ++h) {
       arc_levels_.push_back(pyramid_.arc_max[static_cast<std::size_t>(h)].cells.data());
       min_levels_.push_back(pyramid_.grid_min[pyramid_.min_level(h)].cells.data());

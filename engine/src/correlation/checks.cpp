@@ -65,7 +65,7 @@ void check(const CorrelationOptions& options) {
 }
 
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
-                     const SearchSize& search) {
+                     const SearchSize& search, bool float_cells) {
   const double width_m = map.width * map.resolution, height_m = map.height * map.resolution;
   // Every lattice pose is a search cell's centre: the first lies inside the map only if one
   // search cell fits in it (else the answer would lie outside the map).
@@ -93,7 +93,8 @@ void check_resources(const GridGeometry& map, const CorrelationOptions& options,
     what << " and a search of " << search.translations << " cells x " << search.headings
          << " headings";
   }
-  check_memory(correlation_memory_bytes(map, options, reach, search), options.limits, what.str());
+  check_memory(correlation_memory_bytes(map, options, reach, search, float_cells), options.limits,
+               what.str());
 }
 
 /// What the global grids' padding covers (m): options.reach_m or the ring's reach, whichever

@@ -288,15 +288,19 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   check(options_);
   if (map_.cells.empty()) throw Error("correlation estimator: the map is empty");
   reach_ = padding_reach(options_, ring_);
-  check_resources(map_.geometry, options_, reach_);  // before any grid is allocated
+  // A laser's hits score only positive cells, as fixed point: no bound reads a min-pooled
+  // level, and no score a float cell (an observation bringing its own ring still gets a
+  // valid, looser bound, and the floats the int8 cells stand for).
+  positive_only_ = ring_.sonars.empty() && options_.scan.model == ScanModel::Hits;
+  check_resources(map_.geometry, options_, reach_, {}, keeps_floats());  // before allocating
   // Only the multiresolution search reads the coarser levels.
   const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < built; ++l) {
     const double res = level_resolution(options_.resolution, l);
     const int pad = static_cast<int>(std::ceil(reach_ / res)) + 3;
-    levels_.push_back(
-        pad_grid(make_global_grid(map_, res, options_.global, options_.field, options_.limits), pad,
-                 options_.arc_rule));
+    levels_.push_back(pad_grid(
+        make_global_grid(map_, res, options_.global, options_.field, options_.limits), pad,
+        options_.arc_rule, keeps_floats() ? PaddedCells::FloatsToo : PaddedCells::Int8WhereExact));
   }
   if (options_.strategy == SearchStrategy::BranchAndBound) {
     // Deep enough for a window over the whole map; small windows start lower.
@@ -304,11 +308,8 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     int depth = 0;
     while ((1 << depth) < std::max(finest.width, finest.height)) ++depth;
     ++depth;  // heading intervals widen blocks up to twice their side
-    // A laser's hits score only positive cells: no bound reads a min-pooled level (an
-    // observation bringing its own ring still gets a valid, looser bound).
-    const bool positive_only = ring_.sonars.empty() && options_.scan.model == ScanModel::Hits;
     pyramid_ = make_bound_pyramid(
-        finest, depth, positive_only ? PyramidLevels::MaxOnly : PyramidLevels::MaxAndMin);
+        finest, depth, positive_only_ ? PyramidLevels::MaxOnly : PyramidLevels::MaxAndMin);
   }
 }
 
@@ -332,7 +333,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   const std::vector<SearchLevel> levels =
       search_levels(observation, points ? &*points : nullptr, level_count);
   check_resources(map_.geometry, options_, reach_,
-                  search_size(lattice, levels.front(), options_.strategy, level_count, false));
+                  search_size(lattice, levels.front(), options_.strategy, level_count, false),
+                  keeps_floats());
   WindowSearch search(lattice, levels, pyramid_);
   if (hypotheses_in_one_pass(options_, hypotheses)) {
     search.bnb.keep_share = options_.second_peak_floor;
@@ -393,7 +395,7 @@ ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
   const SearchLevel level = search_levels(observation, points ? &*points : nullptr, 1).front();
   check_resources(map_.geometry, options_, reach_,
-                  search_size(lattice, level, SearchStrategy::Exhaustive, 1, true));
+                  search_size(lattice, level, SearchStrategy::Exhaustive, 1, true), keeps_floats());
   const SearchResult r = search_exhaustive(lattice, level);
   ScoreVolume v;
   v.nx = lattice.x1 - lattice.x0 + 1;

@@ -13,6 +13,7 @@ namespace {
 constexpr double kMapBytes = 1.0;            // CellState per map cell
 constexpr double kPaddedGridBytes = 2.0;     // the grid and its arc view as int8: every
                                              // global model's values are whole multiples
+constexpr double kPaddedFloatBytes = 8.0;    // and as floats, when kept (PaddedCells)
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
@@ -36,12 +37,13 @@ struct LevelBytes {
 };
 
 LevelBytes level_bytes(const GridGeometry& map, const CorrelationOptions& options, double res,
-                       double reach_m) {
+                       double reach_m, bool float_cells) {
   const GlobalGridSize size = global_grid_size(map, res, reach_m);
   const double cells = size.width * size.height;
   const double build =
       kBuildBytes + (options.global == GlobalModel::LikelihoodField ? kFieldBuildBytes : 0.0);
-  return {kPaddedGridBytes * size.padded_cells(), build * cells};
+  const double padded = kPaddedGridBytes + (float_cells ? kPaddedFloatBytes : 0.0);
+  return {padded * size.padded_cells(), build * cells};
 }
 
 /// The bound pyramid of the finest grid: what it keeps, and what pooling it needs on top.
@@ -83,12 +85,12 @@ int bound_pyramid_depth(const GlobalGridSize& size) {
 }
 
 double correlation_memory_bytes(const GridGeometry& map, const CorrelationOptions& options,
-                                double reach_m, const SearchSize& search) {
+                                double reach_m, const SearchSize& search, bool float_cells) {
   const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
   double kept = kMapBytes * map.width * map.height, building = 0.0;
   for (int l = 0; l < built; ++l) {
     const LevelBytes level =
-        level_bytes(map, options, level_resolution(options.resolution, l), reach_m);
+        level_bytes(map, options, level_resolution(options.resolution, l), reach_m, float_cells);
     building = std::max(building, level.building);  // one level is built at a time
     kept += level.kept;
   }

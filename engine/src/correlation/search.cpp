@@ -67,7 +67,7 @@ std::vector<T> padded_cells(const EvidenceGrid& grid, const GridGeometry& padded
 
 }  // namespace
 
-PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
+PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule, PaddedCells cells) {
   PaddedGrid p;
   p.pad = pad;
   p.width = grid.width();
@@ -98,7 +98,7 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
       p.arc_cells8 = padded_cells<std::int8_t>(grid, p.grid.geometry, pad, kGatherSlack,
                                                [&](float v) { return to_int8(arc(v), scale); });
     }
-    return p;
+    if (cells == PaddedCells::Int8WhereExact) return p;
   }
   p.grid.cells = padded_cells<float>(grid, p.grid.geometry, pad, 0, [](float v) { return v; });
   if (!p.arc_is_grid) p.arc_cells = padded_cells<float>(grid, p.grid.geometry, pad, 0, arc);
@@ -106,14 +106,14 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule) {
 }
 
 std::vector<float> PaddedGrid::float_cells() const {
-  if (!has_int8()) return grid.cells;
+  if (has_floats()) return grid.cells;
   std::vector<float> out(cell_count());
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(grid8[i]);
   return out;
 }
 
 std::vector<float> PaddedGrid::arc_float_cells() const {
-  if (!has_int8()) return arc_view();
+  if (has_floats()) return arc_view();
   std::vector<float> out(cell_count());
   const std::vector<std::int8_t>& arc = arc_view8();
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(arc[i]);

@@ -169,6 +169,11 @@ class CorrelationEstimator final : public Estimator {
   SonarRing ring_;
   CorrelationOptions options_;
   double reach_ = 0.0;  ///< what the padding covers (m)
+  /// A laser's hits alone: only positive cells, read as fixed point (set in the constructor).
+  bool positive_only_ = false;
+  /// Whether the padded grids keep their floats beside the int8 cells: for float local grids
+  /// (a sonar ring's cones), which read them directly.
+  bool keeps_floats() const { return !positive_only_; }
   std::vector<PaddedGrid> levels_;
   BoundPyramid pyramid_;  ///< of levels_[0], built for SearchStrategy::BranchAndBound
 };

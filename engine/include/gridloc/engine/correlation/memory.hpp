@@ -41,9 +41,9 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 ///  - the map itself: 1 byte a map cell (CellState);
 ///  - each global grid built (1, or options.levels for Multires), per padded cell: the
 ///    padded grid and its arc view as int8 (1 + 1: every global model's values are whole
-///    multiples of 1 / int8_scale); while building, per unpadded cell: the resampled map and
-///    its flags (1 + 1) and the unpadded grid (4), plus the squared distances of a
-///    likelihood field (8);
+///    multiples of 1 / int8_scale), and as floats (4 + 4) unless !float_cells; while building, per
+///    unpadded cell: the resampled map and its flags (1 + 1) and the unpadded grid (4), plus the
+///    squared distances of a likelihood field (8);
 ///  - branch and bound's bound pyramid of the finest grid, per padded cell: a level of an
 ///    evidence grid 2 bytes (max and min pooled int8), of a likelihood field 10 (their floats
 ///    too, 4 + 4) times bound_pyramid_depth, plus 1 (the minimum's level of a max-only
@@ -52,7 +52,10 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 ///    point), a rigid scan's point cells (16 bytes a point) and 300 bytes of bookkeeping;
 ///    per pose kept (SearchSize::every_pose) 32 bytes (the scored pose and its volume score).
 /// Doubles throughout: no size overflows before it is compared with a limit.
+/// `float_cells`: the padded grids keep their floats beside the int8 cells (PaddedCells::
+/// FloatsToo: 4 + 4 bytes a padded cell more).
 double correlation_memory_bytes(const GridGeometry& map, const CorrelationOptions& options,
-                                double reach_m, const SearchSize& search = {});
+                                double reach_m, const SearchSize& search = {},
+                                bool float_cells = true);
 
 }  // namespace gridloc

@@ -24,18 +24,24 @@ namespace gridloc {
 /// engine/doc/correlation.md).
 enum class ArcRule { Neutral, Signed };
 
+/// Which cells a padded grid keeps: int8 alone where they hold the values exactly (4x less
+/// memory; a float local grid then reads the floats they stand for, a little slower), or the
+/// floats too (a sonar ring's float local grids read them directly).
+enum class PaddedCells { Int8WhereExact, FloatsToo };
+
 /// A global grid padded with `pad` unknown (0) cells on every side, so that any local grid
 /// of extent <= pad placed on any cell of the map needs no bounds checks. The arc view is the
 /// grid that arc cells read: max(G, 0) under ArcRule::Neutral, G itself under Signed.
-/// The cells are kept once: as int8 times int8_scale when every value is a whole multiple of
+/// The cells are kept as int8 times int8_scale when every value is a whole multiple of
 /// 1 / int8_scale (int8_scale_for: a -1/0/1 evidence grid, a likelihood field), which give
-/// the floats back exactly (cell(), float_cells()); as floats otherwise. The arc view is its
-/// own copy only where it differs from the grid (Neutral with negative cells).
+/// the floats back exactly (cell(), float_cells()), and as floats when no scale fits or
+/// PaddedCells::FloatsToo asks. The arc view is its own copy only where it differs from the
+/// grid (Neutral with negative cells).
 struct PaddedGrid {
-  /// The padded grid's geometry (map cell (ix, iy) is grid cell (ix + pad, iy + pad)); its
-  /// cells only when there is no int8 copy (empty when has_int8()).
+  /// The padded grid's geometry (map cell (ix, iy) is grid cell (ix + pad, iy + pad)), and its
+  /// cells as floats when kept (has_floats()).
   EvidenceGrid grid;
-  /// The arc view's floats where it differs from the grid and there is no int8 copy.
+  /// The arc view's floats where it differs from the grid and floats are kept.
   std::vector<float> arc_cells;
   /// The grid and the arc view (where it differs) as int8 times int8_scale, each followed by
   /// kGatherSlack readable bytes; empty when the values are not whole multiples.
@@ -48,20 +54,21 @@ struct PaddedGrid {
   bool arc_is_grid = true;  ///< the arc view equals the grid (Signed, or no negative cell)
 
   bool has_int8() const { return !grid8.empty(); }
+  bool has_floats() const { return !grid.cells.empty(); }
   /// int8 copies of a grid whose values are all -1, 0 or 1.
   bool ternary() const { return has_int8() && int8_scale == 1.0f; }
   /// Cells of the padded grid.
   std::size_t cell_count() const { return grid.geometry.size(); }
-  /// The arc view's floats: only without int8 cells (empty otherwise; see arc_float_cells).
+  /// The arc view's floats: empty without has_floats() (see arc_float_cells).
   const std::vector<float>& arc_view() const { return arc_is_grid ? grid.cells : arc_cells; }
   /// The arc view as int8 (has_int8() only), followed by kGatherSlack bytes.
   const std::vector<std::int8_t>& arc_view8() const { return arc_is_grid ? grid8 : arc_cells8; }
   /// The float an int8 cell stands for, exactly (int8_scale_for).
   float decode(std::int8_t v) const { return static_cast<float>(v) / int8_scale; }
   /// The grid's and the arc view's value at flat index i, whichever way they are kept.
-  float cell(std::size_t i) const { return has_int8() ? decode(grid8[i]) : grid.cells[i]; }
+  float cell(std::size_t i) const { return has_floats() ? grid.cells[i] : decode(grid8[i]); }
   float arc_cell(std::size_t i) const {
-    return has_int8() ? decode(arc_view8()[i]) : arc_view()[i];
+    return has_floats() ? arc_view()[i] : decode(arc_view8()[i]);
   }
   /// Every cell of the grid and of the arc view as floats (a copy).
   std::vector<float> float_cells() const;
@@ -79,7 +86,8 @@ std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells, flo
 
 /// Throws gridloc::Error when the padded grid would have 2^31 cells or more (offsets are
 /// int32).
-PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule = ArcRule::Neutral);
+PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule = ArcRule::Neutral,
+                    PaddedCells cells = PaddedCells::Int8WhereExact);
 
 /// Reference score: sum over local cells of value * global cell (arc cells per `rule`), cells
 /// outside the grid counting 0; positive cells and negative cells are summed separately, each
@@ -176,14 +184,15 @@ inline double correlate(const std::int8_t* arc, const std::int8_t* all,
 inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy) {
   const std::ptrdiff_t origin =
       static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width() + (cx + global.pad);
-  if (!global.has_int8()) {
+  if (global.has_int8() && local.fixed_shift >= 0) {
+    return correlate(global.arc_view8().data() + origin, global.grid8.data() + origin, local) /
+           static_cast<double>(global.int8_scale);
+  }
+  if (global.has_floats()) {
     return correlate(global.arc_view().data() + origin, global.grid.cells.data() + origin, local);
   }
   const std::int8_t* arc = global.arc_view8().data() + origin;
   const std::int8_t* all = global.grid8.data() + origin;
-  if (local.fixed_shift >= 0) {
-    return correlate(arc, all, local) / static_cast<double>(global.int8_scale);
-  }
   // A float local grid reads the floats the int8 cells stand for: cast (scale 1) or decoded.
   if (global.int8_scale == 1.0f) return correlate_scalar(arc, all, local);
   return correlate_scalar_decoded(arc, all, local, global.int8_scale);
