@@ -41,8 +41,8 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   const double padded = (100.0 + 46.0) * (80.0 + 46.0);
   // The map (1 B), the padded grid (int8 and floats: 10 B) and the unpadded build (6 B).
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0), 8000.0 + 10.0 * padded + 6.0 * 8000.0);
-  // A laser's estimator keeps the int8 cells alone: 2 B.
-  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, false),
+  // A laser's hits alone: the int8 cells alone, 2 B.
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, true),
             8000.0 + 2.0 * padded + 6.0 * 8000.0);
   // + 8 levels of 2 B (int8 only) and 1 B, pooling in two float working grids 8 B
   options.strategy = SearchStrategy::BranchAndBound;
@@ -53,6 +53,11 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0),
             8000.0 + 10.0 * padded + (10.0 * 8 + 1.0) * padded +
                 std::max((6.0 + 8.0) * 8000, 8.0 * padded));
+  // A laser's hits alone on it: int8 cells (2 B) and max-pooled int8 levels (1 B each, 1 B
+  // for the minimum), pooled from copies (2 B).
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, true),
+            8000.0 + 2.0 * padded + (1.0 * 8 + 1.0) * padded +
+                std::max((6.0 + 8.0) * 8000, 2.0 * padded));
   options.global = CorrelationOptions{}.global;
   const double grids = correlation_memory_bytes(map, options, 1.0);
   SearchSize search;
@@ -78,6 +83,17 @@ TEST(MemoryEstimate, CoversTheGridsBuilt) {
                                                    load_sonar_ring(test::ring_path()).reach());
   EXPECT_GE(estimate, kept);
   EXPECT_LE(estimate, 1.5 * kept);
+  // A laser's hits alone on a likelihood field: the int8 cells alone.
+  options.global = GlobalModel::LikelihoodField;
+  options.reach_m = 1.0;
+  const CorrelationEstimator laser(room(), options);
+  const PaddedGrid& h = laser.level(0);
+  EXPECT_FALSE(h.has_floats());
+  const double hits_kept = static_cast<double>(h.grid8.size() + h.arc_cells8.size()) + 8000.0;
+  const double hits_estimate = correlation_memory_bytes(room().geometry, options, 1.0, {}, true);
+  EXPECT_GE(hits_estimate, hits_kept);
+  // and the transient build of the unpadded field (6 + 8 B a map cell)
+  EXPECT_LE(hits_estimate, 1.5 * hits_kept + 14.0 * 8000.0);
 }
 
 // Issue 14: --step-xy 1e-4 on a 7.8 m room built a 78000 x 67000 grid (5 GB, then bad_alloc).

@@ -65,7 +65,7 @@ void check(const CorrelationOptions& options) {
 }
 
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
-                     const SearchSize& search, bool float_cells) {
+                     const SearchSize& search, bool hits_only) {
   const double width_m = map.width * map.resolution, height_m = map.height * map.resolution;
   // Every lattice pose is a search cell's centre: the first lies inside the map only if one
   // search cell fits in it (else the answer would lie outside the map).
@@ -93,7 +93,7 @@ void check_resources(const GridGeometry& map, const CorrelationOptions& options,
     what << " and a search of " << search.translations << " cells x " << search.headings
          << " headings";
   }
-  check_memory(correlation_memory_bytes(map, options, reach, search, float_cells), options.limits,
+  check_memory(correlation_memory_bytes(map, options, reach, search, hits_only), options.limits,
                what.str());
 }
 

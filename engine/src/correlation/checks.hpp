@@ -15,9 +15,9 @@ double padding_reach(const CorrelationOptions& options, const SonarRing& ring);
 /// grid the options build for `map` (reach `reach` m) and
 /// the memory they and a search of size `search` need (correlation_memory_bytes) against
 /// options.limits, before anything is allocated; throws gridloc::Error naming the limit.
-/// `float_cells`: the padded grids keep floats beside their int8 cells.
+/// `hits_only`: a laser's hits alone (correlation_memory_bytes).
 void check_resources(const GridGeometry& map, const CorrelationOptions& options, double reach,
-                     const SearchSize& search = {}, bool float_cells = true);
+                     const SearchSize& search = {}, bool hits_only = false);
 
 /// Checks the observation is sonar readings for `ring` or a scan within `reach`, not both.
 void check_observation(const Observation& observation, const SonarRing& ring, double reach);

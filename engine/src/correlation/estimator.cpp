@@ -292,7 +292,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
   // level, and no score a float cell (an observation bringing its own ring still gets a
   // valid, looser bound, and the floats the int8 cells stand for).
   positive_only_ = ring_.sonars.empty() && options_.scan.model == ScanModel::Hits;
-  check_resources(map_.geometry, options_, reach_, {}, keeps_floats());  // before allocating
+  check_resources(map_.geometry, options_, reach_, {}, positive_only_);  // before allocating
   // Only the multiresolution search reads the coarser levels.
   const int built = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   for (int l = 0; l < built; ++l) {
@@ -334,7 +334,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
       search_levels(observation, points ? &*points : nullptr, level_count);
   check_resources(map_.geometry, options_, reach_,
                   search_size(lattice, levels.front(), options_.strategy, level_count, false),
-                  keeps_floats());
+                  positive_only_);
   WindowSearch search(lattice, levels, pyramid_);
   if (hypotheses_in_one_pass(options_, hypotheses)) {
     search.bnb.keep_share = options_.second_peak_floor;
@@ -395,7 +395,7 @@ ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
   const SearchLevel level = search_levels(observation, points ? &*points : nullptr, 1).front();
   check_resources(map_.geometry, options_, reach_,
-                  search_size(lattice, level, SearchStrategy::Exhaustive, 1, true), keeps_floats());
+                  search_size(lattice, level, SearchStrategy::Exhaustive, 1, true), positive_only_);
   const SearchResult r = search_exhaustive(lattice, level);
   ScoreVolume v;
   v.nx = lattice.x1 - lattice.x0 + 1;

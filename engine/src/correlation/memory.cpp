@@ -13,7 +13,7 @@ namespace {
 constexpr double kMapBytes = 1.0;            // CellState per map cell
 constexpr double kPaddedGridBytes = 2.0;     // the grid and its arc view as int8: every
                                              // global model's values are whole multiples
-constexpr double kPaddedFloatBytes = 8.0;    // and as floats, when kept (PaddedCells)
+constexpr double kPaddedFloatBytes = 8.0;    // and as floats, unless a laser's hits alone
 constexpr double kBuildBytes = 6.0;          // resampled map + flags (uint8) + unpadded float
 constexpr double kFieldBuildBytes = 8.0;     // a likelihood field's squared distances (double)
 constexpr double kPyramidLevelBytes = 10.0;  // arc_max + grid_min (float) + int8 copies
@@ -22,6 +22,8 @@ constexpr double kTernaryLevelBytes = 2.0;   // an evidence grid's levels: int8 
 constexpr double kPyramidBaseBytes = 1.0;    // level 0 is the padded grid's: 1 B for the
                                              // minimum's level of a max-only pyramid
 constexpr double kPoolingBytes = 8.0;        // the two working grids pooled in place
+constexpr double kHitsLevelBytes = 1.0;      // a laser's hits alone: max-pooled int8 levels,
+constexpr double kHitsPoolingBytes = 2.0;    // each pooled from a copy of the one below
 constexpr double kLocalCellBytes = 12.0;     // PlacedLocalGrid: offset, value, fixed (4 each)
 constexpr double kPointCellBytes = 16.0;     // PointCells: offset (8), x and y (4 + 4)
 constexpr double kHeadingBytes = 300.0;      // HeadingGrids::Entry and the search's node
@@ -37,22 +39,25 @@ struct LevelBytes {
 };
 
 LevelBytes level_bytes(const GridGeometry& map, const CorrelationOptions& options, double res,
-                       double reach_m, bool float_cells) {
+                       double reach_m, bool hits_only) {
   const GlobalGridSize size = global_grid_size(map, res, reach_m);
   const double cells = size.width * size.height;
   const double build =
       kBuildBytes + (options.global == GlobalModel::LikelihoodField ? kFieldBuildBytes : 0.0);
-  const double padded = kPaddedGridBytes + (float_cells ? kPaddedFloatBytes : 0.0);
+  const double padded = kPaddedGridBytes + (hits_only ? 0.0 : kPaddedFloatBytes);
   return {padded * size.padded_cells(), build * cells};
 }
 
 /// The bound pyramid of the finest grid: what it keeps, and what pooling it needs on top.
-LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& options,
-                         double reach_m) {
+LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& options, double reach_m,
+                         bool hits_only) {
   if (options.strategy != SearchStrategy::BranchAndBound) return {};
   const GlobalGridSize size = global_grid_size(map, options.resolution, reach_m);
   const double padded = size.padded_cells();
   const double depth = bound_pyramid_depth(size);
+  if (hits_only) {  // max-pooled int8 levels and one level of the minimum, whatever the grid
+    return {(kHitsLevelBytes * depth + kPyramidBaseBytes) * padded, kHitsPoolingBytes * padded};
+  }
   // A likelihood field's levels keep their floats; an evidence grid's (-1/0/1) only int8.
   if (options.global == GlobalModel::LikelihoodField) {
     return {(kPyramidLevelBytes * depth + kPyramidBaseBytes) * padded, kPoolingBytes * padded};
@@ -85,16 +90,16 @@ int bound_pyramid_depth(const GlobalGridSize& size) {
 }
 
 double correlation_memory_bytes(const GridGeometry& map, const CorrelationOptions& options,
-                                double reach_m, const SearchSize& search, bool float_cells) {
+                                double reach_m, const SearchSize& search, bool hits_only) {
   const int built = options.strategy == SearchStrategy::Multires ? options.levels : 1;
   double kept = kMapBytes * map.width * map.height, building = 0.0;
   for (int l = 0; l < built; ++l) {
     const LevelBytes level =
-        level_bytes(map, options, level_resolution(options.resolution, l), reach_m, float_cells);
+        level_bytes(map, options, level_resolution(options.resolution, l), reach_m, hits_only);
     building = std::max(building, level.building);  // one level is built at a time
     kept += level.kept;
   }
-  const LevelBytes pyramid = pyramid_bytes(map, options, reach_m);
+  const LevelBytes pyramid = pyramid_bytes(map, options, reach_m, hits_only);
   building = std::max(building, pyramid.building);
   kept += pyramid.kept;
   return kept + building + search_bytes(search);

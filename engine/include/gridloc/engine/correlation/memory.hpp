@@ -41,7 +41,7 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 ///  - the map itself: 1 byte a map cell (CellState);
 ///  - each global grid built (1, or options.levels for Multires), per padded cell: the
 ///    padded grid and its arc view as int8 (1 + 1: every global model's values are whole
-///    multiples of 1 / int8_scale), and as floats (4 + 4) unless !float_cells; while building, per
+///    multiples of 1 / int8_scale), and as floats (4 + 4) unless hits_only; while building, per
 ///    unpadded cell: the resampled map and its flags (1 + 1) and the unpadded grid (4), plus the
 ///    squared distances of a likelihood field (8);
 ///  - branch and bound's bound pyramid of the finest grid, per padded cell: a level of an
@@ -52,10 +52,11 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 ///    point), a rigid scan's point cells (16 bytes a point) and 300 bytes of bookkeeping;
 ///    per pose kept (SearchSize::every_pose) 32 bytes (the scored pose and its volume score).
 /// Doubles throughout: no size overflows before it is compared with a limit.
-/// `float_cells`: the padded grids keep their floats beside the int8 cells (PaddedCells::
-/// FloatsToo: 4 + 4 bytes a padded cell more).
+/// `hits_only`: the estimator scores a laser's hits alone (no sonar ring, ScanModel::Hits):
+/// its padded grids keep no floats and its pyramid only max-pooled int8 levels (1 byte a
+/// level) and one level of the minimum.
 double correlation_memory_bytes(const GridGeometry& map, const CorrelationOptions& options,
                                 double reach_m, const SearchSize& search = {},
-                                bool float_cells = true);
+                                bool hits_only = false);
 
 }  // namespace gridloc
