@@ -45,6 +45,7 @@ struct TrackArgs {
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
+  bool keep_re_searches = false;
   int every = 1;
   std::size_t start = 0, count = 0;
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
@@ -186,6 +187,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.resolution = args.search_resolution;
+  options.localizer.research.drop_once_localized = !args.keep_re_searches;
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
   options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
       model.frac;
@@ -390,6 +392,9 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
                   "a re-search runs one heading slice of about this many lattice poses per "
                   "update (0: the whole search at once)")
       ->capture_default_str();
+  cmd->add_flag("--keep-re-searches", args.keep_re_searches,
+                "run a re-search to its end even once the track is localized again on one place "
+                "(by default it is dropped then)");
   cmd->add_option("--max-range", args.max_range, "laser returns beyond this are no return (m)")
       ->capture_default_str();
   cmd->add_option("--resolution", args.resolution,

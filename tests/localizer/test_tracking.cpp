@@ -313,5 +313,40 @@ TEST(Tracking, AReSearchRunsInSlicesAcrossUpdates) {
   EXPECT_TRUE(has_place_near(e, {pose.x - 6.0, pose.y, pose.theta}));
 }
 
+// A re-search started by an ambiguity is dropped once a drive resolves it: the answer is
+// `localized` on one place again, so its remaining slices would only bring places the track's
+// evidence outweighs. With drop_once_localized off it runs to its end.
+TEST(Tracking, AReSearchIsDroppedOnceTheTrackIsLocalizedAgain) {
+  const OccupancyMap map = two_rooms();
+  for (const bool drop : {true, false}) {
+    LocalizerOptions options = laser_options();
+    options.reseed_after_m = 0.3;            // while ambiguous, search again after 0.3 m
+    options.research.poses_per_slice = 2e3;  // a search of this map in many slices
+    options.research.drop_once_localized = drop;
+    Localizer localizer(map, laser(), options);
+    // Ambiguous in room B, then 0.3 m on (a re-search starts), then out of the room.
+    std::vector<Pose2> path;
+    for (double y = 5.0; y <= 5.7; y += 0.1) path.push_back({10.0, y, -0.5 * std::numbers::pi});
+    for (const Pose2& p : drive_out_of_room_b()) path.push_back(p);
+    bool started = false, localized_during_search = false, under_way_after = false;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      localizer.add_odometry(path[k]);
+      localizer.add_observation(double(k), scan_at(map, path[k]));
+      const LocalizerStatus status = localizer.status();
+      const bool under_way = status.search_slices > 0 && !status.search_finished;
+      if (k > 0 && under_way) started = true;
+      if (started && localized_during_search) under_way_after |= under_way;
+      const Estimate e = localizer.estimate();
+      if (started && e.verdict == Verdict::Localized && e.alternatives.size() == 1) {
+        localized_during_search = true;
+      }
+    }
+    ASSERT_TRUE(started) << drop;
+    ASSERT_TRUE(localized_during_search) << drop;
+    EXPECT_EQ(under_way_after, !drop) << drop;
+    EXPECT_TRUE(right(localizer.estimate(), path.back())) << drop;
+  }
+}
+
 }  // namespace
 }  // namespace gridloc

@@ -285,6 +285,9 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
                                                   const Observation& observation) const {
   const bool ambiguous = next.estimate && next.estimate->verdict == Verdict::Ambiguous;
   const bool lost = tracked.empty() || tracked.front().misses >= options_.misses_before_global;
+  const bool settled = next.estimate && next.estimate->verdict == Verdict::Localized &&
+                       tracked.size() == 1 && tracked.front().misses == 0;
+  if (next.search && settled && options_.research.drop_once_localized) next.search.reset();
   if (!next.search && (lost || (ambiguous && next.since_global_m >= options_.reseed_after_m))) {
     const CorrelationEstimator& searcher = search_estimator(!next.estimate);
     const SearchWindow global = searcher.global_window(observation);
