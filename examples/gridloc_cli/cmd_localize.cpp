@@ -1,12 +1,15 @@
 // gridloc localize: one localization from a readings file and a prior, as JSON.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "gridloc/engine/correlation/coarse_to_fine.hpp"
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/engine/evaluation/sector_protocol.hpp"
 #include "gridloc/engine/icp/estimator.hpp"
@@ -22,11 +25,18 @@
 namespace gridloc::cli {
 namespace {
 
+constexpr double kAutoCoarse = -1.0;  ///< --coarse left out: chosen from the map's cell
+
 struct LocalizeArgs {
   LocalizationArgs inputs;
   std::string estimator = "correlation";
   std::string sectors;  ///< --sectors: sectors saved by `gridloc sectors --out`
   int repeat = 1;
+  /// --coarse: a laser scan's --global search on a coarse copy of the map with cells of this
+  /// size (m), its best places refined at the map's cell; 0: the exact search of every pose;
+  /// kAutoCoarse (the default): 0.2 m where the map's cell is 0.1 m or finer, else exact.
+  double coarse = kAutoCoarse;
+  int coarse_places = CoarseToFineOptions{}.places;  ///< --coarse-places
   bool json = true;  // --json: JSON is the only output, the flag is accepted
 };
 
@@ -43,6 +53,14 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
     throw Error("--estimator " + args.estimator + " needs a laser scan (--scan): " +
                 (sectors ? "a sonar ring's echoes give no label (seed 000 needs a 360 degree scan)"
                          : "ICP finds no tangents in a sonar ring's echoes"));
+  }
+  if (!std::isfinite(args.coarse) || (args.coarse < 0.0 && args.coarse != kAutoCoarse)) {
+    throw Error(
+        "--coarse must be a cell size >= 0 m (0: the exact search; leave it out for "
+        "the automatic choice)");
+  }
+  if (args.coarse_places < 1) {
+    throw Error("--coarse-places must be at least 1, got " + std::to_string(args.coarse_places));
   }
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(
@@ -84,12 +102,43 @@ std::unique_ptr<Estimator> make_sector_estimator(
   return std::make_unique<SectorCorrelationEstimator>(sectors, local);
 }
 
+/// The coarse copy's cell of --coarse for a localization at `fine` m cells, 0 for the exact
+/// search: only a laser scan's --global search of the correlation estimator is coarse-to-fine.
+double coarse_cell(const LocalizeArgs& args, EstimatorKind kind, double fine) {
+  const bool applies =
+      kind == EstimatorKind::Correlation && args.inputs.whole_map && !args.inputs.scan.empty();
+  if (!applies || args.coarse == 0.0) return 0.0;
+  if (args.coarse > 0.0) {
+    if (args.coarse <= fine) {
+      std::ostringstream message;
+      message << "--coarse " << args.coarse << " m must be coarser than the map's " << fine
+              << " m cell (0: the exact search)";
+      throw Error(message.str());
+    }
+    return args.coarse;
+  }
+  constexpr double kAutoCell = 0.2;  // 4 cells of a 5 cm map
+  return fine <= 0.5 * kAutoCell ? kAutoCell : 0.0;
+}
+
+CoarseToFineOptions coarse_to_fine_options(const LocalizeArgs& args, double coarse) {
+  CoarseToFineOptions options;
+  options.resolution = coarse;
+  options.places = args.coarse_places;
+  return options;
+}
+
 /// The estimator of `kind` other than the correlation search itself (null for that one):
-/// the sector estimators, ICP on the correlation estimator's map, or the search then ICP.
+/// the sector estimators, ICP on the correlation estimator's map, the search then ICP, or
+/// the search on a coarse copy refined at the map's cell (`coarse` > 0).
 std::unique_ptr<Estimator> make_estimator(
     const LocalizeArgs& args, EstimatorKind kind,
-    const std::shared_ptr<const CorrelationEstimator>& correlation) {
+    const std::shared_ptr<const CorrelationEstimator>& correlation, double coarse) {
   if (is_sector_estimator(kind)) return make_sector_estimator(args, kind, correlation);
+  if (coarse > 0.0) {
+    return std::make_unique<CoarseToFineEstimator>(correlation,
+                                                   coarse_to_fine_options(args, coarse));
+  }
   if (kind == EstimatorKind::Correlation) return nullptr;
   auto icp = std::make_shared<const IcpEstimator>(correlation->map());
   if (kind == EstimatorKind::Icp) return std::make_unique<IcpEstimator>(*icp);
@@ -113,14 +162,18 @@ RepeatedEstimate estimate_repeatedly(const Estimator& estimator, const Observati
   return result;
 }
 
-/// The output of `localize`: the estimate, the estimator, the lattice pose, the window, the
-/// echo filter's rejections (several firings) and the timing.
+/// The output of `localize`: the estimate, the estimator, the correlation estimator's `search`
+/// (its strategy, or coarse-to-fine on a coarse copy of `coarse` m cells), the lattice pose,
+/// the window, the echo filter's rejections (several firings) and the timing.
 nlohmann::json localize_json(const RepeatedEstimate& result, const Estimator& estimator,
-                             const Localization& localization, double precompute_ms, int repeat) {
+                             const Localization& localization, double precompute_ms, int repeat,
+                             const std::string& search, double coarse) {
   const Estimate& e = result.estimate;
   const SearchWindow& window = localization.window;
   nlohmann::json out = to_json(e);
   out["estimator"] = estimator.name();
+  if (!search.empty()) out["search"] = search;
+  if (coarse > 0.0) out["coarse_m"] = coarse;
   out["lattice"] = {{"pose", to_json(e.lattice_pose)}, {"score", e.score}};
   out["window"] = {{"center", to_json(window.center)},
                    {"half_xy", window.half_xy},
@@ -145,17 +198,30 @@ nlohmann::json localize_json(const RepeatedEstimate& result, const Estimator& es
 
 void run(const LocalizeArgs& args) {
   const EstimatorKind kind = checked_kind(args);
-  Localization localization = prepare_localization(args.inputs);
+  double coarse = 0.0;
+  // A coarse-to-fine search's fine estimator searches small windows only: a shallow pyramid.
+  Localization localization = prepare_localization(args.inputs, [&](CorrelationOptions& options) {
+    coarse = coarse_cell(args, kind, options.resolution);
+    if (coarse > 0.0) {
+      options.max_bound_depth =
+          refinement_bound_depth(coarse_to_fine_options(args, coarse), options.resolution);
+    }
+  });
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const CorrelationEstimator> correlation = std::move(localization.estimator);
-  const std::unique_ptr<Estimator> chosen = make_estimator(args, kind, correlation);
+  const std::unique_ptr<Estimator> chosen = make_estimator(args, kind, correlation, coarse);
   const double precompute_ms =
       localization.precompute_ms +
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const Estimator& estimator = chosen ? *chosen : static_cast<const Estimator&>(*correlation);
+  const std::string search = kind != EstimatorKind::Correlation ? ""
+                             : coarse > 0.0                     ? "coarse-to-fine"
+                                            : to_string(correlation->options().strategy);
   const RepeatedEstimate result =
       estimate_repeatedly(estimator, localization.observation, localization.window, args.repeat);
-  std::cout << localize_json(result, estimator, localization, precompute_ms, args.repeat).dump(2)
+  std::cout << localize_json(result, estimator, localization, precompute_ms, args.repeat, search,
+                             coarse)
+                   .dump(2)
             << "\n";
 }
 
@@ -178,6 +244,16 @@ void add_localize(CLI::App& app) {
                   "--estimator sectors or sectors+correlation: the sectors saved by `gridloc "
                   "sectors --out DIR` (DIR/sector_map.json) instead of computing them (- reads "
                   "standard input)");
+  cmd->add_option("--coarse", args->coarse,
+                  "--global with --scan: search a coarse copy of the map with cells of this size "
+                  "(m) and refine its best places at the map's cell (fast, not proven optimal); "
+                  "0: the exact search of every pose; default: 0.2 where the map's cell is 0.1 "
+                  "m or finer, else exact")
+      ->capture_default_str();
+  cmd->add_option("--coarse-places", args->coarse_places,
+                  "coarse-to-fine: the coarse copy's best places refined at most (its winner and "
+                  "the distinct places scoring --second-peak-floor of it)")
+      ->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();
   // Issue 3's comparison scripts pass --json; localize prints JSON either way.

@@ -90,7 +90,8 @@ void LocalizationArgs::add_to(CLI::App* cmd, const std::string& global_help) {
   search.add_to(cmd);
 }
 
-Localization prepare_localization(const LocalizationArgs& args) {
+Localization prepare_localization(const LocalizationArgs& args,
+                                  const std::function<void(CorrelationOptions&)>& tune) {
   using clock = std::chrono::steady_clock;
   if (args.whole_map == !args.prior.empty())
     throw Error("give either --prior x,y,theta or --global");
@@ -122,6 +123,7 @@ Localization prepare_localization(const LocalizationArgs& args) {
   options.limits = limits();
   // A scan needs no ring: the padding covers its max range instead.
   options.reach_m = localization.observation.scan ? args.max_range : 0.0;
+  if (tune) tune(options);
   if (localization.observation.scan) {
     localization.estimator = std::make_unique<CorrelationEstimator>(std::move(map), options);
   } else {

@@ -2,6 +2,7 @@
 // The inputs of one localization, shared by `localize` and `heatmap`: the map, the sensor
 // (sonar readings or a scan), the prior or --global, the window and the search options.
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -58,6 +59,9 @@ struct Localization {
 /// naming the option otherwise), loads the inputs and builds the estimator. A readings file
 /// with several firings (firings_m) goes through the echo filter (filter_echoes): its
 /// rejected sonars are in observation.rejected.
-Localization prepare_localization(const LocalizationArgs& args);
+/// `tune`, when given, adjusts the estimator's options (their resolution is the window's
+/// step) just before it is built.
+Localization prepare_localization(const LocalizationArgs& args,
+                                  const std::function<void(CorrelationOptions&)>& tune = {});
 
 }  // namespace gridloc::cli

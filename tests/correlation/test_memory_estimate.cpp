@@ -58,6 +58,11 @@ TEST(MemoryEstimate, TermsAreTheDocumentedBytesPerCell) {
   EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, true),
             8000.0 + 2.0 * padded + (1.0 * 8 + 1.0) * padded +
                 std::max((6.0 + 8.0) * 8000, 2.0 * padded));
+  // A pyramid capped at 3 levels counts 3 (CorrelationOptions::max_bound_depth).
+  options.max_bound_depth = 3;
+  EXPECT_EQ(correlation_memory_bytes(map, options, 1.0, {}, true),
+            8000.0 + 2.0 * padded + (1.0 * 3 + 1.0) * padded +
+                std::max((6.0 + 8.0) * 8000, 2.0 * padded));
   options.global = CorrelationOptions{}.global;
   const double grids = correlation_memory_bytes(map, options, 1.0);
   SearchSize search;

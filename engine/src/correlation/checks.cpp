@@ -32,6 +32,10 @@ void check(const CorrelationOptions& options) {
     throw Error("correlation options: second_peak_floor must lie in [0, 1), got " +
                 std::to_string(options.second_peak_floor));
   }
+  if (options.max_bound_depth < 0 || options.max_bound_depth > 31) {
+    throw Error("correlation options: max_bound_depth must be in [0, 31], got " +
+                std::to_string(options.max_bound_depth));
+  }
   if (options.covariance_cells < 0 || options.covariance_cells > 20) {
     throw Error("correlation options: covariance_cells must be in [0, 20], got " +
                 std::to_string(options.covariance_cells));

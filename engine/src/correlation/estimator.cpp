@@ -308,6 +308,7 @@ CorrelationEstimator::CorrelationEstimator(OccupancyMap map, SonarRing ring,
     int depth = 0;
     while ((1 << depth) < std::max(finest.width, finest.height)) ++depth;
     ++depth;  // heading intervals widen blocks up to twice their side
+    if (options_.max_bound_depth > 0) depth = std::min(depth, options_.max_bound_depth);
     pyramid_ = make_bound_pyramid(
         finest, depth, positive_only_ ? PyramidLevels::MaxOnly : PyramidLevels::MaxAndMin);
   }

@@ -54,7 +54,9 @@ LevelBytes pyramid_bytes(const GridGeometry& map, const CorrelationOptions& opti
   if (options.strategy != SearchStrategy::BranchAndBound) return {};
   const GlobalGridSize size = global_grid_size(map, options.resolution, reach_m);
   const double padded = size.padded_cells();
-  const double depth = bound_pyramid_depth(size);
+  const int whole_map = bound_pyramid_depth(size);
+  const double depth =
+      options.max_bound_depth > 0 ? std::min(whole_map, options.max_bound_depth) : whole_map;
   if (hits_only) {  // max-pooled int8 levels and one level of the minimum, whatever the grid
     return {(kHitsLevelBytes * depth + kPyramidBaseBytes) * padded, kHitsPoolingBytes * padded};
   }

@@ -50,6 +50,11 @@ struct CorrelationOptions {
   /// Branch and bound only: bound intervals of headings of a scan, not only single headings
   /// (BranchAndBoundOptions::heading_intervals). Exact either way.
   bool heading_intervals = false;
+  /// Branch and bound only: build at most this many levels of the bound pyramid (0: enough
+  /// for one block over the whole map). Any depth is exact; a shallow one suits an estimator
+  /// that only searches small windows (CoarseToFineEstimator's fine one) and builds faster
+  /// in less memory, while a whole-map search on it opens more top blocks.
+  int max_bound_depth = 0;
   bool refine = true;  ///< sub-cell refinement of the winner (see refine())
   /// Farthest a local grid may reach (m), for the global grids' padding: 0 means the ring's
   /// reach; set it to a laser's max range to localize scans.

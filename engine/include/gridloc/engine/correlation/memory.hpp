@@ -33,6 +33,7 @@ GlobalGridSize global_grid_size(const GridGeometry& map, double resolution, doub
 
 /// Levels of the bound pyramid branch and bound builds over a global grid of `size`: enough
 /// for a block over the whole map, plus one (heading intervals widen blocks up to twice).
+/// (CorrelationOptions::max_bound_depth caps it.)
 int bound_pyramid_depth(const GlobalGridSize& size);
 
 /// The peak bytes a CorrelationEstimator with `options` holds for a map of geometry `map`
@@ -47,7 +48,8 @@ int bound_pyramid_depth(const GlobalGridSize& size);
 ///  - branch and bound's bound pyramid of the finest grid, per padded cell: a level of an
 ///    evidence grid 2 bytes (max and min pooled int8), of a likelihood field 10 (their floats
 ///    too, 4 + 4) times bound_pyramid_depth, plus 1 (the minimum's level of a max-only
-///    pyramid; level 0 is the padded grid's), and 8 more while a level is pooled;
+///    pyramid; level 0 is the padded grid's), and 8 more while a level is pooled
+///    (bound_pyramid_depth, at most options.max_bound_depth when set);
 ///  - a search: per heading its placed local grid (12 bytes a cell: offset, value, fixed
 ///    point), a rigid scan's point cells (16 bytes a point) and 300 bytes of bookkeeping;
 ///    per pose kept (SearchSize::every_pose) 32 bytes (the scored pose and its volume score).

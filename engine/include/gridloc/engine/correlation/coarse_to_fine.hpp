@@ -1,0 +1,63 @@
+#pragma once
+/// A global search on a coarse copy of the map, refined at the map's own cell (issue 35): the
+/// coarse copy's best places, each looked for again in a small window on the fine grids; the
+/// best of those is the answer, the distinct others its hypotheses. On a real building's map at 5 cm
+/// it is several times faster than the exact search of every fine pose, and it is not proven
+/// optimal (Estimate::stats.proven_optimal is false): a place the coarse copy scores below
+/// its best ones is never looked at closely. The fine estimator alone is the exact mode.
+#include <memory>
+#include <string>
+
+#include "gridloc/engine/correlation/estimator.hpp"
+
+namespace gridloc {
+
+struct CoarseToFineOptions {
+  double resolution = 0.2;        ///< the coarse copy's cell (m); coarser than the fine estimator's
+  int places = 8;                 ///< coarse places refined at most (>= 1; 1 without a second peak)
+  double half_xy_cells = 1.5;     ///< a refinement window's half width, in coarse cells
+  double half_theta_steps = 2.0;  ///< its half heading span, in coarse heading steps
+  /// The coarse copy is a likelihood field spread over a coarse cell and reaching two, with
+  /// free-space evidence (a wall's returns then score near it whichever coarse cell they fall
+  /// in); false: the fine estimator's own model at the coarse cell.
+  bool field = true;
+};
+
+/// Checks the options against the fine cell; throws gridloc::Error naming the field.
+void validate(const CoarseToFineOptions& options, double fine_resolution);
+
+/// The bound pyramid depth the refinement windows need (one block over a window, plus one):
+/// a fine estimator built only for them (CorrelationOptions::max_bound_depth) precomputes
+/// less and holds less memory than one deep enough for the whole map.
+int refinement_bound_depth(const CoarseToFineOptions& options, double fine_resolution);
+
+class CoarseToFineEstimator final : public Estimator {
+ public:
+  /// Builds the coarse copy of `fine`'s map (its options at options.resolution); throws
+  /// gridloc::Error for bad options and for a coarse copy over the limits.
+  CoarseToFineEstimator(std::shared_ptr<const CorrelationEstimator> fine,
+                        CoarseToFineOptions options = {});
+
+  /// `window` is the fine estimator's (its global_window(), or a smaller one): the coarse
+  /// search covers the same area and headings on the coarse lattice. Each refinement is the
+  /// fine estimator's own search of its window (the winner's with its covariance).
+  Estimate estimate(const Observation& observation, const SearchWindow& window) const override;
+  std::string name() const override { return "correlation"; }
+
+  const CorrelationEstimator& fine() const { return *fine_; }
+  const CorrelationEstimator& coarse() const { return coarse_; }
+  const CoarseToFineOptions& options() const { return options_; }
+
+ private:
+  /// The coarse search's places for `window`.
+  Estimate coarse_places(const Observation& observation, const SearchWindow& window) const;
+  /// The fine search of the window around one coarse place (`place`'s heading span included).
+  Estimate refine_place(const Observation& observation, const Pose2& place,
+                        double coarse_step_theta, double fine_step_theta) const;
+
+  std::shared_ptr<const CorrelationEstimator> fine_;
+  CoarseToFineOptions options_;
+  CorrelationEstimator coarse_;
+};
+
+}  // namespace gridloc

@@ -1,0 +1,160 @@
+// A global search on a coarse copy of the map, refined at the map's own cell.
+#include "gridloc/engine/correlation/coarse_to_fine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "confidence.hpp"
+#include "gridloc/grids/error.hpp"
+
+namespace gridloc {
+namespace {
+
+/// Throws naming `field` and its value unless `ok`.
+void require(bool ok, const char* field, double value, const char* rule) {
+  if (ok) return;
+  std::ostringstream message;
+  message << "coarse-to-fine search: " << field << " = " << value << " " << rule;
+  throw Error(message.str());
+}
+
+const std::shared_ptr<const CorrelationEstimator>& checked(
+    const std::shared_ptr<const CorrelationEstimator>& fine, const CoarseToFineOptions& options) {
+  if (!fine) throw Error("coarse-to-fine search: no fine estimator");
+  validate(options, fine->options().resolution);
+  return fine;
+}
+
+/// The fine options at the coarse cell (on a likelihood field when options.field), reporting
+/// `places` places and no covariance (the answer's comes from its fine window).
+CorrelationOptions coarse_options(const CorrelationOptions& fine,
+                                  const CoarseToFineOptions& options) {
+  CorrelationOptions coarse = fine;
+  coarse.resolution = options.resolution;
+  coarse.hypotheses = options.places;  // without the second peak: the best ones it scored
+  coarse.covariance_cells = 0;
+  coarse.refine = false;  // each place is looked for again at the fine cell
+  if (options.field) {
+    coarse.global = GlobalModel::LikelihoodField;
+    coarse.field.sigma_m = options.resolution;
+    coarse.field.cutoff_m = 2.0 * options.resolution;
+    coarse.field.free_value = -1.0;
+  }
+  return coarse;
+}
+
+bool distinct(const Pose2& a, const Pose2& b, const CorrelationOptions& options) {
+  return std::hypot(a.x - b.x, a.y - b.y) > options.distinct_xy ||
+         std::abs(normalize_angle(a.theta - b.theta)) > options.distinct_theta;
+}
+
+/// The best refined place with the others as its hypotheses (distinct ones, best first, up to
+/// options.hypotheses), its second score and verdict as the exact search would give them.
+Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& options) {
+  std::stable_sort(refined.begin(), refined.end(),
+                   [](const Estimate& a, const Estimate& b) { return a.score > b.score; });
+  Estimate e = refined.front();
+  e.alternatives = {{e.lattice_pose, e.score}};
+  const auto wanted = static_cast<std::size_t>(std::max(1, options.hypotheses));
+  for (std::size_t k = 1; k < refined.size() && e.alternatives.size() < wanted; ++k) {
+    const Pose2& pose = refined[k].lattice_pose;
+    const bool apart =
+        std::all_of(e.alternatives.begin(), e.alternatives.end(),
+                    [&](const Hypothesis& h) { return distinct(h.pose, pose, options); });
+    if (apart) e.alternatives.push_back({pose, refined[k].score});
+  }
+  const bool floor = options.second_peak_floor > 0.0 && e.score > 0.0;
+  const bool second = e.alternatives.size() > 1;
+  e.second_score = second  ? e.alternatives[1].score
+                   : floor ? options.second_peak_floor * e.score
+                           : e.score;
+  e.second_below_floor = !second && floor;
+  correlation_detail::judge(e, second || e.second_below_floor, options.verdict);
+  return e;
+}
+
+void add_counts(SearchStats& total, const SearchStats& one) {
+  total.poses_scored += one.poses_scored;
+  total.cells_scored += one.cells_scored;
+}
+
+}  // namespace
+
+void validate(const CoarseToFineOptions& options, double fine_resolution) {
+  require(std::isfinite(options.resolution) && options.resolution > fine_resolution, "resolution",
+          options.resolution, "must be finite and coarser than the fine cell");
+  require(options.places >= 1, "places", options.places, "must be at least 1");
+  require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
+          options.half_xy_cells, "must be finite and > 0");
+  require(std::isfinite(options.half_theta_steps) && options.half_theta_steps > 0.0,
+          "half_theta_steps", options.half_theta_steps, "must be finite and > 0");
+}
+
+int refinement_bound_depth(const CoarseToFineOptions& options, double fine_resolution) {
+  validate(options, fine_resolution);
+  const double half_cells = std::ceil(options.half_xy_cells * options.resolution / fine_resolution);
+  const double cells = 2.0 * half_cells + 1.0;
+  int depth = 0;
+  while (depth < 30 && std::ldexp(1.0, depth) < cells) ++depth;
+  return depth + 1;  // heading intervals widen blocks up to twice their side
+}
+
+CoarseToFineEstimator::CoarseToFineEstimator(std::shared_ptr<const CorrelationEstimator> fine,
+                                             CoarseToFineOptions options)
+    : fine_(checked(fine, options)),
+      options_(options),
+      coarse_(fine_->map(), fine_->ring(), coarse_options(fine_->options(), options)) {}
+
+Estimate CoarseToFineEstimator::estimate(const Observation& observation,
+                                         const SearchWindow& window) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Estimate rough = coarse_places(observation, window);
+  const double coarse_step =
+      std::max(window.step_theta, coarse_.global_window(observation).step_theta);
+  std::vector<Estimate> refined;
+  for (const Hypothesis& place : rough.alternatives) {
+    refined.push_back(refine_place(observation, place.pose, coarse_step, window.step_theta));
+  }
+  SearchStats stats = rough.stats;
+  for (const Estimate& r : refined) add_counts(stats, r.stats);
+  Estimate e = best_of(std::move(refined), fine_->options());
+  e.on_window_edge = rough.on_window_edge;
+  e.stats = stats;
+  e.stats.levels = 2;
+  e.stats.proven_optimal = false;  // the coarse copy chose the places looked at closely
+  e.stats.upper_bound = std::numeric_limits<double>::quiet_NaN();
+  e.stats.elapsed_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return e;
+}
+
+Estimate CoarseToFineEstimator::coarse_places(const Observation& observation,
+                                              const SearchWindow& window) const {
+  const SearchWindow whole = coarse_.global_window(observation);
+  SearchWindow coarse = window;
+  coarse.step_xy = options_.resolution;
+  // Every fine cell inside a coarse one, and at most the whole map.
+  coarse.half_xy = std::min(window.half_xy + options_.resolution, whole.half_xy);
+  coarse.step_theta = std::max(window.step_theta, whole.step_theta);
+  return coarse_.estimate(observation, coarse);
+}
+
+Estimate CoarseToFineEstimator::refine_place(const Observation& observation, const Pose2& place,
+                                             double coarse_step_theta,
+                                             double fine_step_theta) const {
+  SearchWindow window;
+  window.center = place;
+  window.step_xy = fine_->options().resolution;
+  window.step_theta = fine_step_theta;
+  window.half_xy = options_.half_xy_cells * options_.resolution;
+  window.half_theta = std::min(std::numbers::pi, options_.half_theta_steps * coarse_step_theta);
+  return fine_->estimate(observation, window, 1);
+}
+
+}  // namespace gridloc

@@ -1,0 +1,76 @@
+// `gridloc localize --global --scan`: coarse-to-fine by default on a 5 cm map (issue 35),
+// `--coarse 0` the exact search of every pose; both find a simulated scan's pose, the JSON
+// says which search ran and whether it is proven optimal, and a bad --coarse or
+// --coarse-places is one line.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "cli_support.hpp"
+#include "gridloc/grids/geometry.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+using namespace test;
+
+const std::string kMap = map_path("apartment_small");
+
+nlohmann::json localize(TempDir& dir, const std::string& scan, const std::string& extra) {
+  const CliRun r = run_cli(dir, "localize --map " + quote(kMap) + " --scan " + quote(scan) +
+                                    " --max-range 8 --global" + extra);
+  EXPECT_EQ(r.status, 0) << r.err;
+  return r.status == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+}
+
+void expect_near_truth(const nlohmann::json& j) {
+  ASSERT_TRUE(j.contains("pose")) << j.dump();
+  EXPECT_LE(std::hypot(j["pose"]["x"].get<double>() - 4.2, j["pose"]["y"].get<double>() - 2.1), 0.1)
+      << j.dump();
+  EXPECT_LE(std::abs(rad2deg(normalize_angle(j["pose"]["theta"].get<double>() - 0.7))), 2.0)
+      << j.dump();
+}
+
+TEST(CoarseCli, GlobalScanSearchIsCoarseToFineUnlessAskedExact) {
+  TempDir dir;
+  const std::string scan = dir.file("scan.csv");
+  ASSERT_EQ(
+      run_cli(dir, "simulate --map " + quote(kMap) +
+                       " --pose 4.2,2.1,0.7 --scan --beams 180 --max-range 8 --out " + quote(scan))
+          .status,
+      0);
+  const nlohmann::json fast = localize(dir, scan, "");
+  expect_near_truth(fast);
+  EXPECT_EQ(fast.value("search", ""), "coarse-to-fine");
+  EXPECT_EQ(fast.value("coarse_m", 0.0), 0.2);
+  EXPECT_FALSE(fast["stats"]["proven_optimal"].get<bool>());
+  const nlohmann::json exact = localize(dir, scan, " --coarse 0");
+  expect_near_truth(exact);
+  EXPECT_EQ(exact.value("search", ""), "bnb");
+  EXPECT_TRUE(exact["stats"]["proven_optimal"].get<bool>());
+  const nlohmann::json coarser = localize(dir, scan, " --coarse 0.3");
+  expect_near_truth(coarser);
+  EXPECT_EQ(coarser.value("coarse_m", 0.0), 0.3);
+}
+
+TEST(CoarseCli, BadCoarseCellIsOneLine) {
+  TempDir dir;
+  const std::string scan = dir.file("scan.csv");
+  ASSERT_EQ(
+      run_cli(dir, "simulate --map " + quote(kMap) +
+                       " --pose 4.2,2.1,0.7 --scan --beams 90 --max-range 8 --out " + quote(scan))
+          .status,
+      0);
+  const std::string base =
+      "localize --map " + quote(kMap) + " --scan " + quote(scan) + " --max-range 8 --global";
+  expect_cli_error(run_cli(dir, base + " --coarse 0.03"), {"--coarse", "coarser than the map"});
+  expect_cli_error(run_cli(dir, base + " --coarse nan"), {"--coarse", "cell size"});
+  expect_cli_error(run_cli(dir, base + " --coarse -0.2"), {"--coarse", "cell size"});
+  expect_cli_error(run_cli(dir, base + " --coarse-places 0"), {"--coarse-places", "at least 1"});
+}
+
+}  // namespace
+}  // namespace gridloc

@@ -1,0 +1,157 @@
+// The coarse-to-fine global search (issue 35): a coarse copy's places refined at the map's
+// cell find what the exact search finds on simulated scans, say they are not proven optimal,
+// keep the exact search's verdict rules, and refuse bad options.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "gridloc/engine/correlation/coarse_to_fine.hpp"
+#include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/evaluation/trials.hpp"
+#include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
+#include "test_support.hpp"
+
+namespace gridloc {
+namespace {
+
+constexpr double kMaxRange = 8.0;
+
+std::shared_ptr<const CorrelationEstimator> laser_estimator(const std::string& map_name,
+                                                            bool second_peak = true,
+                                                            int max_bound_depth = 0) {
+  CorrelationOptions options;
+  options.max_bound_depth = max_bound_depth;
+  options.global = GlobalModel::LikelihoodField;
+  options.resolution = 0.05;
+  options.reach_m = kMaxRange;
+  options.second_peak = second_peak;
+  return std::make_shared<const CorrelationEstimator>(load_ros_map(test::map_path(map_name)),
+                                                      options);
+}
+
+Observation scan_at(const OccupancyMap& map, const Pose2& pose, std::uint64_t seed) {
+  Observation observation;
+  observation.scan = simulate_scan(map, pose, 180, kMaxRange, 0.01, seed);
+  return observation;
+}
+
+double heading_gap(const Pose2& a, const Pose2& b) {
+  return std::abs(normalize_angle(a.theta - b.theta));
+}
+
+// On the apartment (11 x 8 m at 5 cm), from no prior: the place the exact search of every
+// pose finds, within a cell and two heading steps, and the truth within 10 cm and 2 deg.
+TEST(CoarseToFine, FindsTheExactSearchsPlaceOnTheApartment) {
+  const auto fine = laser_estimator("apartment_small");
+  const CoarseToFineEstimator coarse_to_fine(fine);
+  Rng rng(35);
+  for (int trial = 0; trial < 6; ++trial) {
+    const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
+    const Observation observation = scan_at(fine->map(), truth, rng.next());
+    const SearchWindow whole = fine->global_window(observation);
+    const Estimate exact = fine->estimate(observation, whole);
+    const Estimate fast = coarse_to_fine.estimate(observation, whole);
+    const std::string what = "trial " + std::to_string(trial);
+    EXPECT_LE(std::hypot(fast.pose.x - exact.pose.x, fast.pose.y - exact.pose.y), 0.05) << what;
+    EXPECT_LE(heading_gap(fast.pose, exact.pose), 2.0 * whole.step_theta) << what;
+    EXPECT_LE(std::hypot(fast.pose.x - truth.x, fast.pose.y - truth.y), 0.1) << what;
+    EXPECT_LE(heading_gap(fast.pose, truth), 2.0 * std::numbers::pi / 180.0) << what;
+    EXPECT_TRUE(exact.stats.proven_optimal) << what;
+    EXPECT_FALSE(fast.stats.proven_optimal) << what;
+    EXPECT_TRUE(std::isnan(fast.stats.upper_bound)) << what;
+    EXPECT_EQ(fast.verdict, exact.verdict) << what;
+    EXPECT_TRUE(fast.covariance.allFinite()) << what;
+    EXPECT_GT(fast.covariance(0, 0), 0.0) << what;
+  }
+}
+
+// In a room with a twin across its middle the search's places include both twins, and the
+// verdict is ambiguous as the exact search's is.
+TEST(CoarseToFine, ReportsTheTwinOfASymmetricRoom) {
+  const auto fine = laser_estimator("room_symmetric");
+  const CoarseToFineEstimator coarse_to_fine(fine);
+  Rng rng(7);
+  int ambiguous = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
+    const Observation observation = scan_at(fine->map(), truth, rng.next());
+    const SearchWindow whole = fine->global_window(observation);
+    const Estimate exact = fine->estimate(observation, whole);
+    const Estimate fast = coarse_to_fine.estimate(observation, whole);
+    const std::string what = "trial " + std::to_string(trial);
+    EXPECT_EQ(fast.verdict, exact.verdict) << what;
+    EXPECT_EQ(fast.alternatives.size(), exact.alternatives.size()) << what;
+    EXPECT_EQ(fast.second_below_floor, exact.second_below_floor) << what;
+    ambiguous += fast.verdict == Verdict::Ambiguous ? 1 : 0;
+  }
+  EXPECT_GT(ambiguous, 0);  // the room's twins are found
+}
+
+// Without the second peak the coarse places are the best ones its search happened to score:
+// the answer is still the best refined place.
+TEST(CoarseToFine, WithoutTheSecondPeakTheBestPlaceIsFound) {
+  const auto fine = laser_estimator("apartment_small", false);
+  const CoarseToFineEstimator coarse_to_fine(fine);
+  Rng rng(3);
+  const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
+  const Observation observation = scan_at(fine->map(), truth, rng.next());
+  const Estimate fast = coarse_to_fine.estimate(observation, fine->global_window(observation));
+  EXPECT_LE(std::hypot(fast.pose.x - truth.x, fast.pose.y - truth.y), 0.1);
+  EXPECT_LE(heading_gap(fast.pose, truth), 2.0 * std::numbers::pi / 180.0);
+}
+
+// The fine estimator built for the refinement windows only (a shallow bound pyramid) gives
+// the same answers as one deep enough for the whole map: every depth is exact.
+TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
+  const CoarseToFineOptions options;
+  const int depth = refinement_bound_depth(options, 0.05);
+  EXPECT_EQ(depth, 5);  // 0.3 m = 6 cells each side: 13 cells, 2^4 >= 13, plus one
+  const auto deep = laser_estimator("apartment_small");
+  const auto shallow = laser_estimator("apartment_small", true, depth);
+  const CoarseToFineEstimator a(deep, options), b(shallow, options);
+  Rng rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Pose2 truth = sample_free_pose(deep->map(), SonarRing{}, 0.4, rng);
+    const Observation observation = scan_at(deep->map(), truth, rng.next());
+    const SearchWindow whole = deep->global_window(observation);
+    const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
+    const std::string what = "trial " + std::to_string(trial);
+    EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
+    EXPECT_EQ(ea.pose.y, eb.pose.y) << what;
+    EXPECT_EQ(ea.pose.theta, eb.pose.theta) << what;
+    EXPECT_EQ(ea.score, eb.score) << what;
+    EXPECT_EQ(ea.second_score, eb.second_score) << what;
+    EXPECT_EQ(ea.verdict, eb.verdict) << what;
+    // A whole-map search on the shallow pyramid is still exact, only slower.
+    const Estimate exact_deep = deep->estimate(observation, whole);
+    const Estimate exact_shallow = shallow->estimate(observation, whole);
+    EXPECT_EQ(exact_deep.lattice_pose.x, exact_shallow.lattice_pose.x) << what;
+    EXPECT_EQ(exact_deep.lattice_pose.y, exact_shallow.lattice_pose.y) << what;
+    EXPECT_EQ(exact_deep.score, exact_shallow.score) << what;
+    EXPECT_TRUE(exact_shallow.stats.proven_optimal) << what;
+  }
+}
+
+TEST(CoarseToFine, BadOptionsAreRefused) {
+  const auto fine = laser_estimator("room_rect");
+  CoarseToFineOptions options;
+  options.resolution = 0.05;  // the fine cell itself
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); },
+                     {"resolution", "coarser than the fine cell"});
+  options = {};
+  options.places = 0;
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"places", "at least 1"});
+  options = {};
+  options.half_xy_cells = std::nan("");
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"half_xy_cells"});
+  test::expect_error([&] { CoarseToFineEstimator(nullptr, {}); }, {"no fine estimator"});
+  CorrelationOptions too_deep = fine->options();
+  too_deep.max_bound_depth = 40;
+  test::expect_error([&] { CorrelationEstimator(fine->map(), too_deep); }, {"max_bound_depth"});
+}
+
+}  // namespace
+}  // namespace gridloc
