@@ -37,7 +37,10 @@ CorrelationOptions coarse_options(const CorrelationOptions& fine,
                                   const CoarseToFineOptions& options) {
   CorrelationOptions coarse = fine;
   coarse.resolution = options.resolution;
-  coarse.hypotheses = options.places;  // without the second peak: the best ones it scored
+  // The places are found as the second peak is (above the floor, in the same search) even
+  // when the answer's second peak is not asked for: they are what the answer is chosen from.
+  coarse.hypotheses = options.places;
+  coarse.second_peak = true;
   coarse.covariance_cells = 0;
   coarse.refine = false;  // each place is looked for again at the fine cell
   if (options.field) {

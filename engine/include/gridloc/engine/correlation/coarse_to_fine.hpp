@@ -1,8 +1,8 @@
 #pragma once
 /// A global search on a coarse copy of the map, refined at the map's own cell (issue 35): the
 /// coarse copy's best places, each looked for again in a small window on the fine grids; the
-/// best of those is the answer, the distinct others its hypotheses. On a real building's map at 5 cm
-/// it is several times faster than the exact search of every fine pose, and it is not proven
+/// best of those is the answer, the distinct others its hypotheses. On a real building's 5 cm
+/// map it is several times faster than the exact search of every fine pose, and it is not proven
 /// optimal (Estimate::stats.proven_optimal is false): a place the coarse copy scores below
 /// its best ones is never looked at closely. The fine estimator alone is the exact mode.
 #include <memory>
@@ -13,8 +13,11 @@
 namespace gridloc {
 
 struct CoarseToFineOptions {
-  double resolution = 0.2;        ///< the coarse copy's cell (m); coarser than the fine estimator's
-  int places = 8;                 ///< coarse places refined at most (>= 1; 1 without a second peak)
+  double resolution = 0.2;  ///< the coarse copy's cell (m); coarser than the fine estimator's
+  /// Coarse places refined at most (>= 1): the coarse winner and the distinct places after
+  /// it scoring the fine options' second_peak_floor of it, found in its one search whatever
+  /// their second_peak (they are what the answer is chosen from, and its hypotheses).
+  int places = 8;
   double half_xy_cells = 1.5;     ///< a refinement window's half width, in coarse cells
   double half_theta_steps = 2.0;  ///< its half heading span, in coarse heading steps
   /// The coarse copy is a likelihood field spread over a coarse cell and reaching two, with
