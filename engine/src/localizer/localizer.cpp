@@ -144,6 +144,13 @@ Localizer::Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions optio
   if (options_.research.resolution > estimator_.options().resolution) {
     CorrelationOptions coarse = estimator_.options();
     coarse.resolution = options_.research.resolution;
+    // Its searches' places are read from the smallest share of the best any reader keeps
+    // (the seeds, drop_ratio; a wide window's look-alikes, split_ratio): branch and bound
+    // finds every one above it in its one search, where a floor of 0 searched again for each.
+    if (coarse.second_peak_floor <= 0.0) {
+      coarse.second_peak_floor =
+          std::min({options_.hypothesis_set.drop_ratio, options_.split_ratio, 0.99});
+    }
     coarse_.emplace(estimator_.map(), coarse);
   }
 }
