@@ -142,6 +142,36 @@ TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
   }
 }
 
+// The answer is ambiguous exactly when a far refined place scores ambiguity_ratio of the best.
+TEST(CoarseToFine, AFarPlaceAtTheAmbiguityRatioMakesTheAnswerAmbiguous) {
+  const auto fine = laser_estimator("apartment_small");
+  const CoarseToFineEstimator first(fine);
+  Rng rng(21);
+  bool tried = false;
+  for (int trial = 0; trial < 20 && !tried; ++trial) {
+    const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
+    Observation observation;
+    observation.scan = simulate_scan(fine->map(), truth, 90, 2.0, 0.01, rng.next());  // short
+    const SearchWindow whole = fine->global_window(observation);
+    const Estimate e = first.estimate(observation, whole);
+    if (e.alternatives.size() < 2) continue;
+    const Hypothesis& second = e.alternatives[1];
+    const double far =
+        std::hypot(second.pose.x - e.lattice_pose.x, second.pose.y - e.lattice_pose.y);
+    if (far <= 1.0 || e.verdict == Verdict::NotLocalized) continue;
+    const double ratio = second.score / e.score;
+    CoarseToFineOptions options;
+    options.ambiguity_ratio = ratio - 0.005;
+    EXPECT_EQ(CoarseToFineEstimator(fine, options).estimate(observation, whole).verdict,
+              Verdict::Ambiguous);
+    options.ambiguity_ratio = std::min(1.0, ratio + 0.005);
+    const Estimate above = CoarseToFineEstimator(fine, options).estimate(observation, whole);
+    if (ratio + 0.005 <= 1.0) EXPECT_NE(above.verdict, Verdict::Ambiguous);
+    tried = true;
+  }
+  EXPECT_TRUE(tried) << "no trial with a far second place";
+}
+
 TEST(CoarseToFine, BadOptionsAreRefused) {
   const auto fine = laser_estimator("room_rect");
   CoarseToFineOptions options;
@@ -151,6 +181,9 @@ TEST(CoarseToFine, BadOptionsAreRefused) {
   options = {};
   options.places = 0;
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"places", "at least 1"});
+  options = {};
+  options.ambiguity_ratio = 1.5;
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"ambiguity_ratio"});
   options = {};
   options.half_xy_cells = std::nan("");
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"half_xy_cells"});

@@ -59,7 +59,8 @@ bool distinct(const Pose2& a, const Pose2& b, const CorrelationOptions& options)
 
 /// The best refined place with the others as its hypotheses (distinct ones, best first, up to
 /// options.hypotheses), its second score and verdict as the exact search would give them.
-Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& options) {
+Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& options,
+                 double ambiguity_ratio) {
   std::stable_sort(refined.begin(), refined.end(),
                    [](const Estimate& a, const Estimate& b) { return a.score > b.score; });
   Estimate e = refined.front();
@@ -78,7 +79,9 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
                    : floor ? options.second_peak_floor * e.score
                            : e.score;
   e.second_below_floor = !second && floor;
-  correlation_detail::judge(e, second || e.second_below_floor, options.verdict);
+  VerdictOptions verdict = options.verdict;
+  verdict.ambiguity_ratio = ambiguity_ratio;
+  correlation_detail::judge(e, second || e.second_below_floor, verdict);
   return e;
 }
 
@@ -93,6 +96,8 @@ void validate(const CoarseToFineOptions& options, double fine_resolution) {
   require(std::isfinite(options.resolution) && options.resolution > fine_resolution, "resolution",
           options.resolution, "must be finite and coarser than the fine cell");
   require(options.places >= 1, "places", options.places, "must be at least 1");
+  require(options.ambiguity_ratio > 0.0 && options.ambiguity_ratio <= 1.0, "ambiguity_ratio",
+          options.ambiguity_ratio, "must lie in (0, 1]");
   require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
           options.half_xy_cells, "must be finite and > 0");
   require(std::isfinite(options.half_theta_steps) && options.half_theta_steps > 0.0,
@@ -126,7 +131,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   }
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
-  Estimate e = best_of(std::move(refined), fine_->options());
+  Estimate e = best_of(std::move(refined), fine_->options(), options_.ambiguity_ratio);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;
