@@ -89,13 +89,25 @@ CorrelationOptions with_drive_reach(const LocalizerOptions& options, const Sonar
   return correlation;
 }
 
+/// The smallest share of a search's best that a place it reports must score to be read: a
+/// seed (HypothesisSetOptions::drop_ratio) or a wide window's look-alike (split_ratio).
+double places_floor(const LocalizerOptions& options) {
+  return std::min({options.hypothesis_set.drop_ratio, options.split_ratio, 0.99});
+}
+
 /// The search options for a laser: scans as rigid points, reaching the laser's range from
-/// anywhere along the drive window.
+/// anywhere along the drive window; the hypotheses above a floor, in one search.
 CorrelationOptions with_laser_reach(const LocalizerOptions& options, const LaserSensor& laser) {
   validate(laser);
   CorrelationOptions correlation =
       laser.tracking_field ? with_laser_tracking_grid(options.correlation) : options.correlation;
   correlation.scan = laser.model;
+  // A window's second peak matters to its confidence only above the default floor, and its
+  // places (a search without a coarse copy) only above places_floor.
+  if (correlation.second_peak_floor <= 0.0) {
+    correlation.second_peak_floor =
+        std::min(CorrelationOptions{}.second_peak_floor, places_floor(options));
+  }
   correlation.reach_m =
       std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +
                                         options.drive.max_distance_m);
@@ -147,10 +159,7 @@ Localizer::Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions optio
     // Its searches' places are read from the smallest share of the best any reader keeps
     // (the seeds, drop_ratio; a wide window's look-alikes, split_ratio): branch and bound
     // finds every one above it in its one search, where a floor of 0 searched again for each.
-    if (coarse.second_peak_floor <= 0.0) {
-      coarse.second_peak_floor =
-          std::min({options_.hypothesis_set.drop_ratio, options_.split_ratio, 0.99});
-    }
+    coarse.second_peak_floor = places_floor(options_);
     coarse_.emplace(estimator_.map(), coarse);
   }
 }
