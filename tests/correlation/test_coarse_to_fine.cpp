@@ -172,6 +172,31 @@ TEST(CoarseToFine, AFarPlaceAtTheAmbiguityRatioMakesTheAnswerAmbiguous) {
   EXPECT_TRUE(tried) << "no trial with a far second place";
 }
 
+// A map whose width is no whole number of coarse cells: the last coarse cell overhangs it, and
+// a place found there is refined inside the map (not refused as a window outside it).
+TEST(CoarseToFine, APlaceInTheCoarseCellOverhangingTheMapIsRefinedInside) {
+  // 1.5 m wide at 5 cm (7.5 coarse cells of 0.2 m), an L of walls on the left and bottom, open
+  // to the right and the top; the robot 5 cm from the right edge.
+  GridGeometry geometry;
+  geometry.resolution = 0.05;
+  geometry.width = 30;
+  geometry.height = 30;
+  OccupancyMap map(geometry, CellState::Free);
+  for (int i = 0; i < 30; ++i) map.at(2, i) = map.at(i, 2) = CellState::Occupied;
+  for (int i = 10; i < 20; ++i) map.at(i, 14) = CellState::Occupied;
+  CorrelationOptions options;
+  options.global = GlobalModel::LikelihoodField;
+  options.resolution = 0.05;
+  options.reach_m = 3.0;
+  const auto fine = std::make_shared<const CorrelationEstimator>(map, options);
+  const CoarseToFineEstimator coarse_to_fine(fine);
+  const Pose2 truth{1.44, 0.33, 3.0};
+  Observation observation;
+  observation.scan = simulate_scan(map, truth, 180, 3.0, 0.0, 1);
+  const Estimate e = coarse_to_fine.estimate(observation, fine->global_window(observation));
+  EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
+}
+
 TEST(CoarseToFine, BadOptionsAreRefused) {
   const auto fine = laser_estimator("room_rect");
   CoarseToFineOptions options;

@@ -85,6 +85,16 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
   return e;
 }
 
+/// `pose` moved onto the nearest cell centre of `map` when it lies past the map's edge (the
+/// last cell of the coarse copy overhangs the map when its side is no whole number of them).
+Pose2 inside(const GridGeometry& map, const Pose2& pose) {
+  Pose2 local = map.to_grid_frame(pose);
+  const double res = map.resolution;
+  local.x = std::clamp(local.x, 0.5 * res, (map.width - 0.5) * res);
+  local.y = std::clamp(local.y, 0.5 * res, (map.height - 0.5) * res);
+  return map.to_world_frame(local);
+}
+
 void add_counts(SearchStats& total, const SearchStats& one) {
   total.poses_scored += one.poses_scored;
   total.cells_scored += one.cells_scored;
@@ -122,12 +132,11 @@ CoarseToFineEstimator::CoarseToFineEstimator(std::shared_ptr<const CorrelationEs
 Estimate CoarseToFineEstimator::estimate(const Observation& observation,
                                          const SearchWindow& window) const {
   const auto start = std::chrono::steady_clock::now();
-  const Estimate rough = coarse_places(observation, window);
-  const double coarse_step =
-      std::max(window.step_theta, coarse_.global_window(observation).step_theta);
+  const SearchWindow coarse = coarse_window(observation, window);
+  const Estimate rough = coarse_.estimate(observation, coarse);
   std::vector<Estimate> refined;
   for (const Hypothesis& place : rough.alternatives) {
-    refined.push_back(refine_place(observation, place.pose, coarse_step, window.step_theta));
+    refined.push_back(refine_place(observation, place.pose, coarse.step_theta, window.step_theta));
   }
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
@@ -142,22 +151,22 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   return e;
 }
 
-Estimate CoarseToFineEstimator::coarse_places(const Observation& observation,
-                                              const SearchWindow& window) const {
+SearchWindow CoarseToFineEstimator::coarse_window(const Observation& observation,
+                                                  const SearchWindow& window) const {
   const SearchWindow whole = coarse_.global_window(observation);
   SearchWindow coarse = window;
   coarse.step_xy = options_.resolution;
   // Every fine cell inside a coarse one, and at most the whole map.
   coarse.half_xy = std::min(window.half_xy + options_.resolution, whole.half_xy);
   coarse.step_theta = std::max(window.step_theta, whole.step_theta);
-  return coarse_.estimate(observation, coarse);
+  return coarse;
 }
 
 Estimate CoarseToFineEstimator::refine_place(const Observation& observation, const Pose2& place,
                                              double coarse_step_theta,
                                              double fine_step_theta) const {
   SearchWindow window;
-  window.center = place;
+  window.center = inside(fine_->map().geometry, place);
   window.step_xy = fine_->options().resolution;
   window.step_theta = fine_step_theta;
   window.half_xy = options_.half_xy_cells * options_.resolution;

@@ -58,9 +58,10 @@ class CoarseToFineEstimator final : public Estimator {
   const CoarseToFineOptions& options() const { return options_; }
 
  private:
-  /// The coarse search's places for `window`.
-  Estimate coarse_places(const Observation& observation, const SearchWindow& window) const;
-  /// The fine search of the window around one coarse place (`place`'s heading span included).
+  /// The coarse copy's window over `window`'s area, at the coarse cell and its heading step.
+  SearchWindow coarse_window(const Observation& observation, const SearchWindow& window) const;
+  /// The fine search of the window around one coarse place (moved inside the map when the
+  /// coarse cell overhangs it).
   Estimate refine_place(const Observation& observation, const Pose2& place,
                         double coarse_step_theta, double fine_step_theta) const;
 
