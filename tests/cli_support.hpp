@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gridloc/sensors/range_scan.hpp"
 #include "test_support.hpp"
 
 namespace gridloc::test {
@@ -73,5 +74,24 @@ inline void expect_cli_error(const CliRun& r, std::initializer_list<std::string>
 inline void expect_cli_error(const CliRun& r, const std::string& part) {
   expect_cli_error(r, {part});
 }
+
+/// A scan as the `angle_rad,range_m` lines `localize --scan` reads, written to `dir`/`name`.
+inline std::string write_scan_csv(TempDir& dir, const std::string& name, const RangeScan& s) {
+  std::string csv;
+  for (std::size_t k = 0; k < s.ranges.size(); ++k) {
+    csv += std::to_string(s.angles[k]) + "," + std::to_string(s.ranges[k]) + "\n";
+  }
+  return dir.write(name, csv);
+}
+
+/// The fixture of the tool's end-to-end tests: a temporary folder, the bundled room_rect map
+/// and wheelchair ring, and GRIDLOC_DATA_DIR set so that the tool finds bundled maps by name.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ::setenv("GRIDLOC_DATA_DIR", maps_dir().c_str(), 1); }
+  TempDir dir;
+  std::string map = map_path("room_rect");
+  std::string ring = ring_path();
+};
 
 }  // namespace gridloc::test
