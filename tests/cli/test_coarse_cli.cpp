@@ -26,6 +26,16 @@ nlohmann::json localize(TempDir& dir, const std::string& scan, const std::string
   return r.status == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
 }
 
+/// A 360 degree scan of `beams` simulated from (4.2, 2.1, 0.7) on the apartment, in `dir`.
+std::string simulated_scan(TempDir& dir, int beams) {
+  const std::string scan = dir.file("scan.csv");
+  const CliRun r =
+      run_cli(dir, "simulate --map " + quote(kMap) + " --pose 4.2,2.1,0.7 --scan --beams " +
+                       std::to_string(beams) + " --max-range 8 --out " + quote(scan));
+  EXPECT_EQ(r.status, 0) << r.err;
+  return scan;
+}
+
 void expect_near_truth(const nlohmann::json& j) {
   ASSERT_TRUE(j.contains("pose")) << j.dump();
   EXPECT_LE(std::hypot(j["pose"]["x"].get<double>() - 4.2, j["pose"]["y"].get<double>() - 2.1), 0.1)
@@ -36,12 +46,7 @@ void expect_near_truth(const nlohmann::json& j) {
 
 TEST(CoarseCli, GlobalScanSearchIsCoarseToFineUnlessAskedExact) {
   TempDir dir;
-  const std::string scan = dir.file("scan.csv");
-  ASSERT_EQ(
-      run_cli(dir, "simulate --map " + quote(kMap) +
-                       " --pose 4.2,2.1,0.7 --scan --beams 180 --max-range 8 --out " + quote(scan))
-          .status,
-      0);
+  const std::string scan = simulated_scan(dir, 180);
   const nlohmann::json fast = localize(dir, scan, "");
   expect_near_truth(fast);
   EXPECT_EQ(fast.value("search", ""), "coarse-to-fine");
@@ -58,12 +63,7 @@ TEST(CoarseCli, GlobalScanSearchIsCoarseToFineUnlessAskedExact) {
 
 TEST(CoarseCli, BadCoarseCellIsOneLine) {
   TempDir dir;
-  const std::string scan = dir.file("scan.csv");
-  ASSERT_EQ(
-      run_cli(dir, "simulate --map " + quote(kMap) +
-                       " --pose 4.2,2.1,0.7 --scan --beams 90 --max-range 8 --out " + quote(scan))
-          .status,
-      0);
+  const std::string scan = simulated_scan(dir, 90);
   const std::string base =
       "localize --map " + quote(kMap) + " --scan " + quote(scan) + " --max-range 8 --global";
   expect_cli_error(run_cli(dir, base + " --coarse 0.03"), {"--coarse", "coarser than the map"});

@@ -38,6 +38,21 @@ Observation scan_at(const OccupancyMap& map, const Pose2& pose, std::uint64_t se
   return observation;
 }
 
+/// A free pose drawn on `map`, its scan and the whole map's window.
+struct Trial {
+  Pose2 truth;
+  Observation observation;
+  SearchWindow whole;
+};
+
+Trial trial_on(const CorrelationEstimator& fine, Rng& rng) {
+  Trial t;
+  t.truth = sample_free_pose(fine.map(), SonarRing{}, 0.4, rng);
+  t.observation = scan_at(fine.map(), t.truth, rng.next());
+  t.whole = fine.global_window(t.observation);
+  return t;
+}
+
 double heading_gap(const Pose2& a, const Pose2& b) {
   return std::abs(normalize_angle(a.theta - b.theta));
 }
@@ -49,9 +64,7 @@ TEST(CoarseToFine, FindsTheExactSearchsPlaceOnTheApartment) {
   const CoarseToFineEstimator coarse_to_fine(fine);
   Rng rng(35);
   for (int trial = 0; trial < 6; ++trial) {
-    const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
-    const Observation observation = scan_at(fine->map(), truth, rng.next());
-    const SearchWindow whole = fine->global_window(observation);
+    const auto [truth, observation, whole] = trial_on(*fine, rng);
     const Estimate exact = fine->estimate(observation, whole);
     const Estimate fast = coarse_to_fine.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
@@ -76,9 +89,7 @@ TEST(CoarseToFine, ReportsTheTwinOfASymmetricRoom) {
   Rng rng(7);
   int ambiguous = 0;
   for (int trial = 0; trial < 4; ++trial) {
-    const Pose2 truth = sample_free_pose(fine->map(), SonarRing{}, 0.4, rng);
-    const Observation observation = scan_at(fine->map(), truth, rng.next());
-    const SearchWindow whole = fine->global_window(observation);
+    const auto [truth, observation, whole] = trial_on(*fine, rng);
     const Estimate exact = fine->estimate(observation, whole);
     const Estimate fast = coarse_to_fine.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
@@ -98,9 +109,7 @@ TEST(CoarseToFine, TheSecondPeakOptionLeavesThePlacesAlone) {
   const CoarseToFineEstimator a(with), b(without);
   Rng rng(3);
   for (int trial = 0; trial < 3; ++trial) {
-    const Pose2 truth = sample_free_pose(with->map(), SonarRing{}, 0.4, rng);
-    const Observation observation = scan_at(with->map(), truth, rng.next());
-    const SearchWindow whole = with->global_window(observation);
+    const auto [truth, observation, whole] = trial_on(*with, rng);
     const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
     EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
@@ -121,9 +130,7 @@ TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
   const CoarseToFineEstimator a(deep, options), b(shallow, options);
   Rng rng(11);
   for (int trial = 0; trial < 4; ++trial) {
-    const Pose2 truth = sample_free_pose(deep->map(), SonarRing{}, 0.4, rng);
-    const Observation observation = scan_at(deep->map(), truth, rng.next());
-    const SearchWindow whole = deep->global_window(observation);
+    const auto [truth, observation, whole] = trial_on(*deep, rng);
     const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
     EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
@@ -166,7 +173,9 @@ TEST(CoarseToFine, AFarPlaceAtTheAmbiguityRatioMakesTheAnswerAmbiguous) {
               Verdict::Ambiguous);
     options.ambiguity_ratio = std::min(1.0, ratio + 0.005);
     const Estimate above = CoarseToFineEstimator(fine, options).estimate(observation, whole);
-    if (ratio + 0.005 <= 1.0) EXPECT_NE(above.verdict, Verdict::Ambiguous);
+    if (ratio + 0.005 <= 1.0) {
+      EXPECT_NE(above.verdict, Verdict::Ambiguous);
+    }
     tried = true;
   }
   EXPECT_TRUE(tried) << "no trial with a far second place";
