@@ -54,13 +54,15 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
                 (sectors ? "a sonar ring's echoes give no label (seed 000 needs a 360 degree scan)"
                          : "ICP finds no tangents in a sonar ring's echoes"));
   }
-  if (!std::isfinite(args.coarse) || (args.coarse < 0.0 && args.coarse != kAutoCoarse)) {
+  const bool cell = std::isfinite(args.coarse) && args.coarse <= kMaxCoarseCell &&
+                    (args.coarse >= 0.0 || args.coarse == kAutoCoarse);
+  if (!cell) {
     throw Error(
-        "--coarse must be a cell size >= 0 m (0: the exact search; leave it out for "
+        "--coarse must be a cell size in [0, 0.5] m (0: the exact search; leave it out for "
         "the automatic choice)");
   }
-  if (args.coarse_places < 1) {
-    throw Error("--coarse-places must be at least 1, got " + std::to_string(args.coarse_places));
+  if (args.coarse_places < 1 || args.coarse_places > kMaxPlaces) {
+    throw Error("--coarse-places must lie in [1, 100], got " + std::to_string(args.coarse_places));
   }
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(
@@ -247,8 +249,8 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--coarse", args->coarse,
                   "--global with --scan: search a coarse copy of the map with cells of this size "
                   "(m) and refine its best places at the map's cell (fast, not proven optimal); "
-                  "0: the exact search of every pose; default: 0.2 where the map's cell is 0.1 "
-                  "m or finer, else exact")
+                  "0: the exact search of every pose; at most 0.5; default: 0.2 where the map's "
+                  "cell is 0.1 m or finer, else exact")
       ->capture_default_str();
   cmd->add_option("--coarse-places", args->coarse_places,
                   "coarse-to-fine: the coarse copy's best places refined at most (its winner and "

@@ -69,7 +69,9 @@ TEST(CoarseCli, BadCoarseCellIsOneLine) {
   expect_cli_error(run_cli(dir, base + " --coarse 0.03"), {"--coarse", "coarser than the map"});
   expect_cli_error(run_cli(dir, base + " --coarse nan"), {"--coarse", "cell size"});
   expect_cli_error(run_cli(dir, base + " --coarse -0.2"), {"--coarse", "cell size"});
-  expect_cli_error(run_cli(dir, base + " --coarse-places 0"), {"--coarse-places", "at least 1"});
+  expect_cli_error(run_cli(dir, base + " --coarse 1"), {"--coarse", "cell size"});
+  expect_cli_error(run_cli(dir, base + " --coarse-places 0"), {"--coarse-places", "[1, 100]"});
+  expect_cli_error(run_cli(dir, base + " --coarse-places 500"), {"--coarse-places", "[1, 100]"});
 }
 
 }  // namespace

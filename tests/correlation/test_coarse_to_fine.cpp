@@ -53,6 +53,17 @@ Trial trial_on(const CorrelationEstimator& fine, Rng& rng) {
   return t;
 }
 
+/// Expects the same answer, bit for bit: pose, scores, hypotheses and verdict.
+void expect_same_answer(const Estimate& a, const Estimate& b, const std::string& what) {
+  EXPECT_EQ(a.pose.x, b.pose.x) << what;
+  EXPECT_EQ(a.pose.y, b.pose.y) << what;
+  EXPECT_EQ(a.pose.theta, b.pose.theta) << what;
+  EXPECT_EQ(a.score, b.score) << what;
+  EXPECT_EQ(a.second_score, b.second_score) << what;
+  EXPECT_EQ(a.alternatives.size(), b.alternatives.size()) << what;
+  EXPECT_EQ(a.verdict, b.verdict) << what;
+}
+
 double heading_gap(const Pose2& a, const Pose2& b) {
   return std::abs(normalize_angle(a.theta - b.theta));
 }
@@ -112,10 +123,7 @@ TEST(CoarseToFine, TheSecondPeakOptionLeavesThePlacesAlone) {
     const auto [truth, observation, whole] = trial_on(*with, rng);
     const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
-    EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
-    EXPECT_EQ(ea.pose.theta, eb.pose.theta) << what;
-    EXPECT_EQ(ea.alternatives.size(), eb.alternatives.size()) << what;
-    EXPECT_EQ(ea.verdict, eb.verdict) << what;
+    expect_same_answer(ea, eb, what);
   }
 }
 
@@ -133,12 +141,7 @@ TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
     const auto [truth, observation, whole] = trial_on(*deep, rng);
     const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
     const std::string what = "trial " + std::to_string(trial);
-    EXPECT_EQ(ea.pose.x, eb.pose.x) << what;
-    EXPECT_EQ(ea.pose.y, eb.pose.y) << what;
-    EXPECT_EQ(ea.pose.theta, eb.pose.theta) << what;
-    EXPECT_EQ(ea.score, eb.score) << what;
-    EXPECT_EQ(ea.second_score, eb.second_score) << what;
-    EXPECT_EQ(ea.verdict, eb.verdict) << what;
+    expect_same_answer(ea, eb, what);
     // A whole-map search on the shallow pyramid is still exact, only slower.
     const Estimate exact_deep = deep->estimate(observation, whole);
     const Estimate exact_shallow = shallow->estimate(observation, whole);
@@ -206,15 +209,44 @@ TEST(CoarseToFine, APlaceInTheCoarseCellOverhangingTheMapIsRefinedInside) {
   EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
 }
 
+// A map narrower than a refinement window (1 m, 0.5 m coarse cells: windows of +-0.75 m):
+// the windows span at most the whole map, not an error about a window larger than it.
+TEST(CoarseToFine, AMapNarrowerThanAWindowIsSearchedWhole) {
+  GridGeometry geometry;
+  geometry.resolution = 0.05;
+  geometry.width = 20;
+  geometry.height = 20;
+  OccupancyMap map(geometry, CellState::Free);
+  for (int i = 0; i < 20; ++i) map.at(1, i) = map.at(i, 1) = CellState::Occupied;
+  for (int i = 8; i < 14; ++i) map.at(i, 12) = CellState::Occupied;
+  CorrelationOptions correlation;
+  correlation.global = GlobalModel::LikelihoodField;
+  correlation.resolution = 0.05;
+  correlation.reach_m = 2.0;
+  const auto fine = std::make_shared<const CorrelationEstimator>(map, correlation);
+  CoarseToFineOptions options;
+  options.resolution = 0.5;
+  const CoarseToFineEstimator coarse_to_fine(fine, options);
+  const Pose2 truth{0.62, 0.38, 2.5};
+  Observation observation;
+  observation.scan = simulate_scan(map, truth, 180, 2.0, 0.0, 1);
+  const Estimate e = coarse_to_fine.estimate(observation, fine->global_window(observation));
+  EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
+}
+
 TEST(CoarseToFine, BadOptionsAreRefused) {
   const auto fine = laser_estimator("room_rect");
   CoarseToFineOptions options;
   options.resolution = 0.05;  // the fine cell itself
   test::expect_error([&] { CoarseToFineEstimator(fine, options); },
                      {"resolution", "coarser than the fine cell"});
+  options.resolution = 0.6;  // ranks places too poorly
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"resolution", "0.5 m"});
   options = {};
   options.places = 0;
-  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"places", "at least 1"});
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"places", "[1, 100]"});
+  options.places = 101;  // more hypotheses than a search reports
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"places", "[1, 100]"});
   options = {};
   options.ambiguity_ratio = 1.5;
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"ambiguity_ratio"});

@@ -103,9 +103,11 @@ void add_counts(SearchStats& total, const SearchStats& one) {
 }  // namespace
 
 void validate(const CoarseToFineOptions& options, double fine_resolution) {
-  require(std::isfinite(options.resolution) && options.resolution > fine_resolution, "resolution",
-          options.resolution, "must be finite and coarser than the fine cell");
-  require(options.places >= 1, "places", options.places, "must be at least 1");
+  require(std::isfinite(options.resolution) && options.resolution > fine_resolution &&
+              options.resolution <= kMaxCoarseCell,
+          "resolution", options.resolution, "must be coarser than the fine cell and at most 0.5 m");
+  require(options.places >= 1 && options.places <= kMaxPlaces, "places", options.places,
+          "must lie in [1, 100]");
   require(options.ambiguity_ratio > 0.0 && options.ambiguity_ratio <= 1.0, "ambiguity_ratio",
           options.ambiguity_ratio, "must lie in (0, 1]");
   require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
@@ -169,7 +171,9 @@ Estimate CoarseToFineEstimator::refine_place(const Observation& observation, con
   window.center = inside(fine_->map().geometry, place);
   window.step_xy = fine_->options().resolution;
   window.step_theta = fine_step_theta;
-  window.half_xy = options_.half_xy_cells * options_.resolution;
+  // At most the whole map (a map narrower than a window).
+  window.half_xy = std::min(options_.half_xy_cells * options_.resolution,
+                            fine_->global_window(observation).half_xy);
   window.half_theta = std::min(std::numbers::pi, options_.half_theta_steps * coarse_step_theta);
   return fine_->estimate(observation, window, 1);
 }
