@@ -14,14 +14,8 @@
 namespace gridloc {
 namespace {
 
-using Cli = test::CliTest;
-using test::CliRun;
-using test::expect_cli_error;
-using test::lines;
-using test::quote;
-using test::read_file;
-using test::run_cli;
-using test::write_scan_csv;
+using namespace test;
+using Cli = CliTest;
 
 TEST_F(Cli, EvalDriveComparesTheDriveWithTheLastFiring) {
   const CliRun r = run_cli(dir,

@@ -15,14 +15,8 @@
 namespace gridloc {
 namespace {
 
-using Cli = test::CliTest;
-using test::CliRun;
-using test::expect_cli_error;
-using test::lines;
-using test::quote;
-using test::read_file;
-using test::run_cli;
-using test::write_scan_csv;
+using namespace test;
+using Cli = CliTest;
 
 TEST_F(Cli, LocalizeWithVisibilitySectors) {
   // The L-shaped room as a polygon map and a noise-free 360-beam scan from (1.2, 1.6, 0.7).

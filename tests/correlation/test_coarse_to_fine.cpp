@@ -184,53 +184,48 @@ TEST(CoarseToFine, AFarPlaceAtTheAmbiguityRatioMakesTheAnswerAmbiguous) {
   EXPECT_TRUE(tried) << "no trial with a far second place";
 }
 
-// A map whose width is no whole number of coarse cells: the last coarse cell overhangs it, and
-// a place found there is refined inside the map (not refused as a window outside it).
-TEST(CoarseToFine, APlaceInTheCoarseCellOverhangingTheMapIsRefinedInside) {
-  // 1.5 m wide at 5 cm (7.5 coarse cells of 0.2 m), an L of walls on the left and bottom, open
-  // to the right and the top; the robot 5 cm from the right edge.
+/// A square of `cells` cells of 5 cm with an L of walls on row and column `wall`, open to the
+/// right and the top, and a bar on row `bar_row` from column `bar_begin` to `bar_end`.
+OccupancyMap open_l_room(int cells, int wall, int bar_row, int bar_begin, int bar_end) {
   GridGeometry geometry;
   geometry.resolution = 0.05;
-  geometry.width = 30;
-  geometry.height = 30;
+  geometry.width = geometry.height = cells;
   OccupancyMap map(geometry, CellState::Free);
-  for (int i = 0; i < 30; ++i) map.at(2, i) = map.at(i, 2) = CellState::Occupied;
-  for (int i = 10; i < 20; ++i) map.at(i, 14) = CellState::Occupied;
-  CorrelationOptions options;
-  options.global = GlobalModel::LikelihoodField;
-  options.resolution = 0.05;
-  options.reach_m = 3.0;
-  const auto fine = std::make_shared<const CorrelationEstimator>(map, options);
-  const CoarseToFineEstimator coarse_to_fine(fine);
-  const Pose2 truth{1.44, 0.33, 3.0};
+  for (int i = 0; i < cells; ++i) map.at(wall, i) = map.at(i, wall) = CellState::Occupied;
+  for (int i = bar_begin; i < bar_end; ++i) map.at(i, bar_row) = CellState::Occupied;
+  return map;
+}
+
+/// The coarse-to-fine answer to a noise-free scan of `map` from `truth`, at `coarse` m cells.
+Estimate small_map_answer(const OccupancyMap& map, const Pose2& truth, double reach,
+                          double coarse) {
+  CorrelationOptions correlation;
+  correlation.global = GlobalModel::LikelihoodField;
+  correlation.resolution = 0.05;
+  correlation.reach_m = reach;
+  const auto fine = std::make_shared<const CorrelationEstimator>(map, correlation);
+  CoarseToFineOptions options;
+  options.resolution = coarse;
   Observation observation;
-  observation.scan = simulate_scan(map, truth, 180, 3.0, 0.0, 1);
-  const Estimate e = coarse_to_fine.estimate(observation, fine->global_window(observation));
+  observation.scan = simulate_scan(map, truth, 180, reach, 0.0, 1);
+  return CoarseToFineEstimator(fine, options)
+      .estimate(observation, fine->global_window(observation));
+}
+
+// A map whose width is no whole number of coarse cells: the last coarse cell overhangs it, and
+// a place found there is refined inside the map (not refused as a window outside it). 1.5 m
+// wide (7.5 coarse cells of 0.2 m), the robot 5 cm from the right edge.
+TEST(CoarseToFine, APlaceInTheCoarseCellOverhangingTheMapIsRefinedInside) {
+  const Pose2 truth{1.44, 0.33, 3.0};
+  const Estimate e = small_map_answer(open_l_room(30, 2, 14, 10, 20), truth, 3.0, 0.2);
   EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
 }
 
 // A map narrower than a refinement window (1 m, 0.5 m coarse cells: windows of +-0.75 m):
 // the windows span at most the whole map, not an error about a window larger than it.
 TEST(CoarseToFine, AMapNarrowerThanAWindowIsSearchedWhole) {
-  GridGeometry geometry;
-  geometry.resolution = 0.05;
-  geometry.width = 20;
-  geometry.height = 20;
-  OccupancyMap map(geometry, CellState::Free);
-  for (int i = 0; i < 20; ++i) map.at(1, i) = map.at(i, 1) = CellState::Occupied;
-  for (int i = 8; i < 14; ++i) map.at(i, 12) = CellState::Occupied;
-  CorrelationOptions correlation;
-  correlation.global = GlobalModel::LikelihoodField;
-  correlation.resolution = 0.05;
-  correlation.reach_m = 2.0;
-  const auto fine = std::make_shared<const CorrelationEstimator>(map, correlation);
-  CoarseToFineOptions options;
-  options.resolution = 0.5;
-  const CoarseToFineEstimator coarse_to_fine(fine, options);
   const Pose2 truth{0.62, 0.38, 2.5};
-  Observation observation;
-  observation.scan = simulate_scan(map, truth, 180, 2.0, 0.0, 1);
-  const Estimate e = coarse_to_fine.estimate(observation, fine->global_window(observation));
+  const Estimate e = small_map_answer(open_l_room(20, 1, 12, 8, 14), truth, 2.0, 0.5);
   EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
 }
 
