@@ -69,6 +69,9 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     // holds at the next observation, a wrong match does not).
     if (surprise) e.verdict = Verdict::NotLocalized;
     if (weak) e.verdict = Verdict::NotLocalized;
+    // A scan's window whose own spread is wider than a localized place's is not one (the
+    // place the odometry holds is asked the same of its fused covariance).
+    if (laser_ && !tight(e.covariance)) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
     hypothesis.confirmed = true;
