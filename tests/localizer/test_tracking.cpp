@@ -199,6 +199,9 @@ TEST(Tracking, ARoomChangedSinceTheMapStillPlacesThePlace) {
   LocalizerOptions bad = laser_options();
   bad.weak_fit_ratio = -0.1;
   EXPECT_THROW(Localizer(map, laser(), bad), Error);
+  bad = laser_options();
+  bad.turn_fit_ratio = 1.5;  // the rule itself: TrackRealLog in tests/cli/test_track_cli.cpp
+  test::expect_error([&] { Localizer(map, laser(), bad); }, {"turn_fit_ratio", "1.5"});
 }
 
 // LocalizerOptions::split_far_winners: for three scans the laser sees what it would see

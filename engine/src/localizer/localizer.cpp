@@ -71,6 +71,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.prior_fit_ratio, "must lie in [0, 1]");
   require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
           "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
+  require(options.turn_fit_ratio >= 0.0 && options.turn_fit_ratio <= 1.0, "turn_fit_ratio",
+          options.turn_fit_ratio, "must lie in [0, 1]");
   require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
           options.odometry_turn_error_per_rad, "must be finite and >= 0");
   validate(options.drive);

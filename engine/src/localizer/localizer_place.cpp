@@ -72,6 +72,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     // A scan's window whose own spread is wider than a localized place's is not one (the
     // place the odometry holds is asked the same of its fused covariance).
     if (laser_ && !tight(e.covariance)) e.verdict = Verdict::NotLocalized;
+    if (laser_ && turns_on_a_weak_fit(hypothesis, e)) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
     hypothesis.confirmed = true;
@@ -105,6 +106,12 @@ bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) co
   const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
   e.verdict = tight(hypothesis.covariance) && !weak ? Verdict::Localized : Verdict::NotLocalized;
   return true;
+}
+
+bool Localizer::turns_on_a_weak_fit(const TrackedHypothesis& carried, const Estimate& e) const {
+  const bool turned =
+      std::abs(normalize_angle(e.pose.theta - carried.pose.theta)) > options_.step_min_rad;
+  return turned && e.normalized_score < options_.turn_fit_ratio * carried.usual_fit;
 }
 
 bool Localizer::splits_off(const TrackedHypothesis& hypothesis, const Pose2& kept,

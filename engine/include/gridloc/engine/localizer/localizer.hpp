@@ -82,6 +82,13 @@ struct LocalizerOptions {
   /// before it did (a look-alike a corridor slid or turned the place into, or a view the map
   /// lacks). The place still follows it; 0: no such rule.
   double localized_fit_ratio = 0.0;
+  /// A laser's window that turns the place more than step_min_rad from where the odometry
+  /// carried it is not `localized` unless it scores at least this share of the place's usual
+  /// normalized score: a scan taken while turning that fits worse than usual and disagrees
+  /// with the odometry's heading (csail's scan 55: 62 % of usual, 5-7 degrees off) is
+  /// matched to a wrong heading more often than the odometry is wrong. The place still
+  /// follows it. 0: no such rule.
+  double turn_fit_ratio = 0.7;
   /// The odometry's place (the best within two cells of where it carried the place) is kept
   /// when it scores within this share of the window's winner: the scan does not move a
   /// place it cannot pin (along a corridor). Cartographer's real-time matcher penalizes the
@@ -271,6 +278,9 @@ class Localizer {
   /// the place from `kept` (LocalizerOptions::split_far_winners).
   bool splits_off(const TrackedHypothesis& hypothesis, const Pose2& kept,
                   const Pose2& winner) const;
+  /// Whether the window `e` turns the `carried` place more than step_min_rad on a fit below
+  /// LocalizerOptions::turn_fit_ratio of its usual one.
+  bool turns_on_a_weak_fit(const TrackedHypothesis& carried, const Estimate& e) const;
   /// A miss that still places the place (LocalizerOptions::weak_fit_ratio): when it does,
   /// moves the place there, fuses the covariances and sets e.verdict; else returns false.
   bool place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const;
