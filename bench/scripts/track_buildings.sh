@@ -21,7 +21,7 @@ row() {  # building model track-options...
   start=$(date +%s.%N)
   timeout 3600 "$gridloc" track --map "$out/$b.yaml" --log "$log" --part held-out --global \
     --truth-from-log --json "$@" >"$out/$b.$m.jsonl" 2>"$out/$b.$m.err" || true
-  wall=$(echo "$(date +%s.%N) - $start" | bc)
+  wall=$(echo "$(date +%s.%N) - $start" | bc | sed "s/^\./0./")
   if [ "$peer" = none ]; then
     side=$(python3 - "$out/$b.$m.jsonl" <<'PY'
 import json, sys
