@@ -71,6 +71,8 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.prior_fit_ratio, "must lie in [0, 1]");
   require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
           "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
+  require(options.first_drop_ratio > 0.0 && options.first_drop_ratio <= 1.0, "first_drop_ratio",
+          options.first_drop_ratio, "must lie in (0, 1]");
   require(options.turn_fit_ratio >= 0.0 && options.turn_fit_ratio <= 1.0, "turn_fit_ratio",
           options.turn_fit_ratio, "must lie in [0, 1]");
   require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
@@ -92,9 +94,11 @@ CorrelationOptions with_drive_reach(const LocalizerOptions& options, const Sonar
 }
 
 /// The smallest share of a search's best that a place it reports must score to be read: a
-/// seed (HypothesisSetOptions::drop_ratio) or a wide window's look-alike (split_ratio).
+/// seed (HypothesisSetOptions::drop_ratio, first_drop_ratio) or a wide window's look-alike
+/// (split_ratio).
 double places_floor(const LocalizerOptions& options) {
-  return std::min({options.hypothesis_set.drop_ratio, options.split_ratio, 0.99});
+  return std::min(
+      {options.hypothesis_set.drop_ratio, options.first_drop_ratio, options.split_ratio, 0.99});
 }
 
 /// The search options for a laser: scans as rigid points, reaching the laser's range from
@@ -359,7 +363,9 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
                  options_.hypothesis_set.merge_theta;
     });
   };
-  for (TrackedHypothesis seed : seed_hypotheses(global, options_.hypothesis_set).hypotheses) {
+  HypothesisSetOptions seeding = options_.hypothesis_set;
+  if (!newcomers && laser_) seeding.drop_ratio = options_.first_drop_ratio;  // a first scan
+  for (TrackedHypothesis seed : seed_hypotheses(global, seeding).hypotheses) {
     std::optional<TrackedHypothesis> followed =
         follow_one(std::move(seed), moved, std::hypot(moved.x, moved.y), observation, nullptr);
     if (!followed || meets(*followed)) continue;
