@@ -85,6 +85,17 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
   return e;
 }
 
+/// Whether a place apart from the best but within the verdict's ambiguity distances of it
+/// scores `ridge_ratio` of the best (CoarseToFineOptions::ridge_ratio).
+bool on_a_ridge(const Estimate& e, const VerdictOptions& verdict, double ridge_ratio) {
+  return std::any_of(e.alternatives.begin() + 1, e.alternatives.end(), [&](const Hypothesis& h) {
+    const double far = std::hypot(h.pose.x - e.lattice_pose.x, h.pose.y - e.lattice_pose.y);
+    const double turn = std::abs(normalize_angle(h.pose.theta - e.lattice_pose.theta));
+    return h.score >= ridge_ratio * e.score && far <= verdict.ambiguity_xy &&
+           turn <= verdict.ambiguity_theta;
+  });
+}
+
 /// `pose` moved onto the nearest cell centre of `map` when it lies past the map's edge (the
 /// last cell of the coarse copy overhangs the map when its side is no whole number of them).
 Pose2 inside(const GridGeometry& map, const Pose2& pose) {
@@ -110,6 +121,8 @@ void validate(const CoarseToFineOptions& options, double fine_resolution) {
           "must lie in [1, 100]");
   require(options.ambiguity_ratio > 0.0 && options.ambiguity_ratio <= 1.0, "ambiguity_ratio",
           options.ambiguity_ratio, "must lie in (0, 1]");
+  require(options.ridge_ratio > 0.0 && options.ridge_ratio <= 1.0, "ridge_ratio",
+          options.ridge_ratio, "must lie in (0, 1]");
   require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
           options.half_xy_cells, "must be finite and > 0");
   require(std::isfinite(options.half_theta_steps) && options.half_theta_steps > 0.0,
@@ -143,6 +156,10 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
   Estimate e = best_of(std::move(refined), fine_->options(), options_.ambiguity_ratio);
+  if (e.verdict == Verdict::Localized && e.score > 0.0 &&
+      on_a_ridge(e, fine_->options().verdict, options_.ridge_ratio)) {
+    e.verdict = Verdict::NotLocalized;
+  }
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;

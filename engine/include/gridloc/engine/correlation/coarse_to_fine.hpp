@@ -32,9 +32,16 @@ struct CoarseToFineOptions {
   /// A distinct refined place (beyond VerdictOptions::ambiguity_xy or _theta) scoring this
   /// share of the best makes the answer `ambiguous` (the exact search's is
   /// VerdictOptions::ambiguity_ratio, 0.97, from simulated sonar). On the held-out scans of
-  /// the shared buildings the wrong `localized` answers had a place at 0.83-0.95 of the best
-  /// where most right ones had none above 0.9: 0.9 (README, issue 35).
-  double ambiguity_ratio = 0.9;
+  /// the shared buildings the wrong `localized` answers had a place at 0.71-0.95 of the best
+  /// where most right ones had none above 0.87: 0.87 (README, issue 35; 0.9 kept 11 wrong
+  /// answers of 240 where 0.87 keeps 7, and one right one fewer).
+  double ambiguity_ratio = 0.87;
+  /// A refined place apart from the best (beyond CorrelationOptions::distinct_xy or
+  /// _theta) but within VerdictOptions::ambiguity_xy and _theta of it, scoring this share of
+  /// the best, makes a `localized` answer `not localized`: the scan fits a stretch of
+  /// corridor, not a pose (belgioioso's held-out scan 378: a place 0.4 m along it at 0.99
+  /// of the best, the answer 1.6 m off).
+  double ridge_ratio = 0.97;
 };
 
 /// Checks the options against the fine cell; throws gridloc::Error naming the field.
