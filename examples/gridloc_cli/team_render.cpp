@@ -16,12 +16,14 @@
 #include "gridloc/grids/error.hpp"
 #include "heatmap_layout.hpp"
 #include "heatmap_plot.hpp"
+#include "team_marks.hpp"
 
 namespace gridloc::cli {
 namespace {
 
 using plot::Box;
 using plot::View;
+using namespace team_marks;
 
 constexpr int kLeft = 72;                 // room for the y tick labels
 constexpr int kRight = 28;                // the right frame clear of the canvas
@@ -31,12 +33,8 @@ constexpr int kMaxPlotHeight = 800;       // both ways
 constexpr int kMinPlotWidth = 480;        // a narrow map is shown wider (title, legend)
 constexpr int kMinPlotHeight = 200;       // a flat one higher
 constexpr double kMarginFraction = 0.05;  // beyond the drawn things, of the longer side
-constexpr double kTick = 11.0;            // a candidate's heading tick (px)
-constexpr double kArrow = 26.0;           // a solution's heading arrow (px)
-constexpr double kHead = 8.0;             // arrow heads (px)
 
 // Colours are BGR.
-const cv::Scalar kCorner(150, 150, 150);      // map corners
 const cv::Scalar kLinkUnused(150, 150, 150);  // the links not used: dotted grey
 const cv::Scalar kOccupied = cv::Scalar::all(layout::kOccupiedGrey);
 const cv::Scalar kUnknown = cv::Scalar::all(layout::kUnknownGrey);  // also outside a polygon
@@ -224,34 +222,6 @@ void paint_polygons(cv::Mat& img, const PolygonMap& map, const View& view) {
   plot::outline_rings(img, rings, plot::kInk, 2);
 }
 
-void corner_dot(cv::Mat& img, const cv::Point2d& p) {
-  plot::circle(img, p, 2.0, kCorner, cv::FILLED);
-}
-
-/// A heading tick from `p` (px) outwards, starting `from` px off it, on a white halo.
-void heading_tick(cv::Mat& img, const cv::Point2d& p, double heading, double from,
-                  const cv::Scalar& colour) {
-  const cv::Point2d d = plot::direction(heading);
-  plot::line(img, p + d * from, p + d * (from + kTick), plot::kWhite, 5);
-  plot::line(img, p + d * from, p + d * (from + kTick), colour, 2);
-}
-
-/// A single-pose candidate: a small ring with its heading tick.
-void candidate_mark(cv::Mat& img, const cv::Point2d& p, double heading, const cv::Scalar& colour) {
-  heading_tick(img, p, heading, 4.5, colour);
-  plot::circle(img, p, 4.5, plot::kWhite, 4);
-  plot::circle(img, p, 4.5, colour, 2);
-}
-
-/// A wall placement: the stretch of positions from a to b, heading ticks at both ends.
-void placement_mark(cv::Mat& img, const cv::Point2d& a, const cv::Point2d& b, double heading,
-                    const cv::Scalar& colour) {
-  plot::line(img, a, b, plot::kWhite, 7);
-  heading_tick(img, a, heading, 0.0, colour);
-  heading_tick(img, b, heading, 0.0, colour);
-  plot::line(img, a, b, colour, 3);
-}
-
 /// Each robot's candidates in its colour (seed 003 Figs 13, 17, 20).
 void paint_candidates(cv::Mat& img, const TeamPicture& picture, const View& view) {
   for (std::size_t r = 0; r < picture.candidates.size(); ++r) {
@@ -266,62 +236,6 @@ void paint_candidates(cv::Mat& img, const TeamPicture& picture, const View& view
       }
     }
   }
-}
-
-/// The two strokes of an arrow head at `tip` pointing along unit `u` (px).
-void arrow_head(cv::Mat& img, const cv::Point2d& tip, const cv::Point2d& u,
-                const cv::Scalar& colour, int thickness) {
-  const double a = 5.0 * std::numbers::pi / 6.0;  // 150 deg back from the tip
-  for (const double turn : {a, -a}) {
-    const cv::Point2d w(u.x * std::cos(turn) - u.y * std::sin(turn),
-                        u.x * std::sin(turn) + u.y * std::cos(turn));
-    plot::line(img, tip, tip + w * kHead, colour, thickness);
-  }
-}
-
-/// A slide's stretch: a double-headed arrow from a to b (px).
-void double_arrow(cv::Mat& img, const cv::Point2d& a, const cv::Point2d& b,
-                  const cv::Scalar& colour) {
-  const cv::Point2d d = b - a;
-  const double length = std::hypot(d.x, d.y);
-  if (!(length >= 1.0)) return;
-  const cv::Point2d u = d / length;
-  for (const auto& [c, thickness] : {std::pair{plot::kWhite, 5}, std::pair{colour, 2}}) {
-    plot::line(img, a, b, c, thickness);
-    arrow_head(img, b, u, c, thickness);
-    arrow_head(img, a, -u, c, thickness);
-  }
-}
-
-/// The best solution's robot: a filled disc with a heading arrow on a white halo.
-void solution_arrow(cv::Mat& img, const cv::Point2d& p, double heading, const cv::Scalar& colour) {
-  const cv::Point2d d = plot::direction(heading);
-  const cv::Point2d tip = p + d * kArrow;
-  for (const auto& [c, thickness] : {std::pair{plot::kWhite, 6}, std::pair{colour, 3}}) {
-    plot::line(img, p, tip, c, thickness);
-    arrow_head(img, tip, d, c, thickness);
-  }
-  plot::circle(img, p, 8.0, plot::kWhite, cv::FILLED);
-  plot::circle(img, p, 6.0, colour, cv::FILLED);
-}
-
-/// A circle drawn as eight dashes.
-void dashed_circle(cv::Mat& img, const cv::Point2d& c, double radius, const cv::Scalar& colour,
-                   int thickness) {
-  const int r = static_cast<int>(std::lround(radius * (1 << plot::kShift)));
-  for (int k = 0; k < 8; ++k) {
-    cv::ellipse(img, plot::sub(c), {r, r}, 0.0, 45.0 * k, 45.0 * k + 25.0, colour, thickness,
-                cv::LINE_AA, plot::kShift);
-  }
-}
-
-/// A rival solution's robot: the arrow's outline, dashed.
-void rival_arrow(cv::Mat& img, const cv::Point2d& p, double heading, const cv::Scalar& colour) {
-  const cv::Point2d d = plot::direction(heading);
-  const cv::Point2d tip = p + d * kArrow;
-  dashed_circle(img, p, 8.0, colour, 2);
-  plot::dashed_line(img, p + d * 8.0, tip, colour, 2, 4.0);
-  arrow_head(img, tip, d, colour, 2);
 }
 
 /// Every solution's slides (seed 003's wall pairs), each robot's stretch in its colour.
