@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "disambiguation_marks.hpp"
 #include "gridloc/engine/disambiguation/region.hpp"
 #include "gridloc/grids/error.hpp"
 #include "heatmap_plot.hpp"
@@ -25,6 +26,7 @@ using plot::outline_rings;
 using plot::stroke;
 using plot::View;
 using plot::wrap;
+using namespace disambiguation_marks;
 
 constexpr int kLeft = 72;        // room for the y tick labels, left of either panel
 constexpr int kRight = 28;       // the right frame clear of the canvas
@@ -38,37 +40,6 @@ constexpr int kHeadingClear = 130;    // heading lines end this far left of the 
                                       // (the next panel's y axis label reaches over it)
 constexpr int kMinCommonPx = 300;     // a common scale leaves each panel's longer side this long
 constexpr double kMarginFraction = 0.05;  // beyond the drawn things, of the longer side
-constexpr double kFaded = 0.4;            // opacity of an eliminated hypothesis
-
-// Colours are BGR.
-const cv::Scalar kOiFill(245, 222, 185);      // OI: light blue
-const cv::Scalar kUsefulFill(140, 225, 140);  // U: light green, blended
-const cv::Scalar kUsefulEdge(50, 140, 50);    // U's outline
-constexpr double kUsefulAlpha = 0.55;         // U's opacity
-const cv::Scalar kInternalEdge(0, 140, 255);  // OI's internal edges: orange
-const cv::Scalar kSilhouette(45, 45, 45);     // OI's silhouette edges, the walls
-const cv::Scalar kSample(125, 125, 125);      // random points: grey
-const cv::Scalar kPath(30, 30, 150);          // the path in the start frame: dark red
-const cv::Scalar kBound(170, 40, 120);        // the lower bound's point: purple
-const cv::Scalar kOutside(205, 205, 205);     // outside the map, obstacles
-
-/// Hypothesis i's colour: ten dark, distinct hues, none near OI's orange edges, U's green,
-/// the path's dark red or the truth's magenta; they cycle beyond ten.
-cv::Scalar hypothesis_colour(int i) {
-  static const std::vector<cv::Scalar> palette{
-      {200, 90, 20},   // blue
-      {150, 40, 130},  // purple
-      {130, 140, 0},   // teal
-      {0, 125, 125},   // olive
-      {30, 75, 140},   // brown
-      {225, 150, 50},  // sky blue
-      {110, 30, 30},   // navy
-      {0, 150, 195},   // dark gold
-      {150, 120, 95},  // slate
-      {70, 110, 0},    // dark green
-  };
-  return palette[static_cast<std::size_t>(i) % palette.size()];
-}
 
 /// A plot area and the round world offset subtracted from the coordinates it shows.
 struct Panel {
@@ -238,40 +209,6 @@ void paint_overlay_edges(cv::Mat& img, const DisambiguationPicture& picture, con
   draw_segments(img, picture.overlay.internal_edges, panel, kInternalEdge, 4);
 }
 
-void sample_dot(cv::Mat& img, const cv::Point2d& p) {
-  plot::circle(img, p, 2.2, kSample, cv::FILLED);
-}
-
-/// Stop `n`: a white disc with a dark red rim, its number to the upper right.
-void stop_marker(cv::Mat& img, const cv::Point2d& p, int n) {
-  plot::circle(img, p, 6.0, plot::kWhite, cv::FILLED);
-  plot::circle(img, p, 6.0, kPath, 2);
-  if (n > 0) {
-    plot::halo_text(
-        img, std::to_string(n),
-        {static_cast<int>(std::lround(p.x)) + 8, static_cast<int>(std::lround(p.y)) - 7},
-        plot::kTickScale, kPath, 1);
-  }
-}
-
-/// The start (the overlay's origin): a black square with a white rim.
-void start_marker(cv::Mat& img, const cv::Point2d& p) {
-  const cv::Point c(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
-  cv::rectangle(img, c - cv::Point(7, 7), c + cv::Point(7, 7), plot::kWhite, cv::FILLED);
-  cv::rectangle(img, c - cv::Point(5, 5), c + cv::Point(5, 5), plot::kInk, cv::FILLED);
-}
-
-/// The lower bound's nearest informative point: a small purple star.
-void bound_marker(cv::Mat& img, const cv::Point2d& p) {
-  for (const auto& [colour, thickness] : {std::pair{plot::kWhite, 5}, std::pair{kBound, 2}}) {
-    for (int k = 0; k < 3; ++k) {
-      const double a = k * std::numbers::pi / 3.0 + std::numbers::pi / 2.0;
-      const cv::Point2d d(7.0 * std::cos(a), 7.0 * std::sin(a));
-      plot::line(img, p - d, p + d, colour, thickness);
-    }
-  }
-}
-
 /// The random points, the path (Fig. 17) with its numbered stops, the start, the bound point.
 void paint_samples_and_path(cv::Mat& img, const DisambiguationPicture& picture,
                             const Panel& panel) {
@@ -326,17 +263,6 @@ void paint_world_paths(cv::Mat& img, const DisambiguationPicture& picture, const
       plot::circle(img, panel.at(p), 4.0, hypothesis_colour(i), 2);
     }
   }
-}
-
-/// Hypothesis n drawn faded: blended with what lies under it.
-void faded_marker(cv::Mat& img, const cv::Point2d& p, double heading, int n) {
-  const cv::Rect box = cv::Rect(static_cast<int>(p.x) - 40, static_cast<int>(p.y) - 40, 80, 80) &
-                       cv::Rect(0, 0, img.cols, img.rows);
-  if (box.empty()) return;
-  cv::Mat under = img(box);
-  cv::Mat layer = under.clone();
-  plot::hypothesis_marker(layer, p - cv::Point2d(box.tl()), heading, n);
-  cv::addWeighted(layer, kFaded, under, 1.0 - kFaded, 0.0, under);
 }
 
 /// Whether every field of the pose is finite (else it is not drawn).
