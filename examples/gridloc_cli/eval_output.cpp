@@ -21,6 +21,14 @@ std::string percent_or_dash(double v, double scale) {
   return std::string(buf) + (scale > 1.0 ? "%" : "");
 }
 
+/// `v` with one decimal as a table cell: "-" for NaN.
+std::string decimal_or_dash(double v) {
+  if (std::isnan(v)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
 }  // namespace
 
 void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& options) {
@@ -28,7 +36,7 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
   if (!out) throw Error("--trials-out: cannot write " + path);
   out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
          "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
-         "std_theta,on_window_edge,agreement,rejected_sonars,estimator\n";
+         "std_theta,on_window_edge,agreement,rejected_sonars,estimator,verdict\n";
   for (const TrialRecord& r : report.records) {
     const EvalConfiguration& c = options.configurations[r.configuration];
     const Estimate& e = r.estimate;
@@ -38,7 +46,7 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
         << e.second_score << ',' << e.confidence << ',' << std::sqrt(e.covariance(0, 0)) << ','
         << std::sqrt(e.covariance(1, 1)) << ',' << std::sqrt(e.covariance(2, 2)) << ','
         << e.on_window_edge << ',' << e.agreement << ',' << r.rejected_sonars << ','
-        << to_string(c.estimator) << '\n';
+        << to_string(c.estimator) << ',' << to_string(e.verdict) << '\n';
   }
   if (!out) throw Error("--trials-out: writing " + path + " failed");
 }
@@ -67,7 +75,11 @@ void print_json(const EvalArgs& args, const std::vector<EvalMap>& maps, const Ev
          {"median_ms", c.median_ms},
          {"sector_identification_rate", nullptr},  // the sector protocol's
          {"auroc", number_or_null(c.auroc)},
-         {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)}});
+         {"failures_flagged_at_95_recall", number_or_null(c.failures_flagged_at_95_recall)},
+         {"localized", c.calibration.localized},
+         {"nees_mean", number_or_null(c.calibration.nees_mean)},
+         {"coverage_2sigma", number_or_null(c.calibration.coverage_2sigma)},
+         {"gross_localized", c.calibration.gross_localized}});
   }
   nlohmann::json names = nlohmann::json::array();
   for (const auto& m : maps) names.push_back(m.name);
@@ -112,21 +124,27 @@ void print_table_title(const EvalArgs& args, const EvalOptions& options, const S
 }
 
 void print_table_rows(const EvalReport& report) {
-  std::printf("%-15s %-9s %-8s %9s %14s %16s %10s %7s %9s\n", "estimator", "local", "global",
-              "success", "mean pos err", "mean head err", "median", "AUROC", "flagged");
+  std::printf("%-15s %-9s %-8s %9s %14s %16s %10s %7s %9s %9s %7s %6s\n", "estimator", "local",
+              "global", "success", "mean pos err", "mean head err", "median", "AUROC", "flagged",
+              "2σ cover", "NEES", "gross");
   for (const auto& c : report.configurations) {
     const bool models = c.configuration.estimator != EstimatorKind::Icp;
-    std::printf("%-15s %-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s\n",
+    std::printf("%-15s %-9s %-8s %8.1f%% %12.3f m %12.2f deg %7.2f ms %7s %9s %9s %7s %6d\n",
                 to_string(c.configuration.estimator).c_str(),
                 models ? to_string(c.configuration.local).c_str() : "-",
                 models ? to_string(c.configuration.global).c_str() : "-", 100.0 * c.success_rate,
                 c.mean_position_error_m, c.mean_heading_error_deg, c.median_ms,
                 percent_or_dash(c.auroc, 1.0).c_str(),
-                percent_or_dash(c.failures_flagged_at_95_recall, 100.0).c_str());
+                percent_or_dash(c.failures_flagged_at_95_recall, 100.0).c_str(),
+                percent_or_dash(c.calibration.coverage_2sigma, 100.0).c_str(),
+                decimal_or_dash(c.calibration.nees_mean).c_str(), c.calibration.gross_localized);
   }
   std::printf(
       "AUROC: how well the confidence separates successes from failures; flagged: failures "
-      "below the confidence that keeps 95%% of successes.\n");
+      "below the confidence that keeps 95%% of successes; over the `localized` answers, 2σ "
+      "cover: position errors within the 2-sigma radius (about 86%% when calibrated), NEES: "
+      "the mean normalized error squared of (x, y, theta) (3 when calibrated), gross: more "
+      "than 0.3 m or 15 deg off.\n");
 }
 
 }  // namespace gridloc::cli

@@ -102,9 +102,17 @@ TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
   EXPECT_TRUE(j.at("noisy").get<bool>());
   for (const auto& c : j.at("configurations")) {
     // A number, or null when a configuration had no failure (or no success) to separate.
-    for (const char* key : {"auroc", "failures_flagged_at_95_recall"}) {
+    for (const char* key :
+         {"auroc", "failures_flagged_at_95_recall", "nees_mean", "coverage_2sigma"}) {
       ASSERT_TRUE(c.contains(key)) << key << " in " << c.dump();
       EXPECT_TRUE(c.at(key).is_number() || c.at(key).is_null()) << c.dump();
+    }
+    // Issue 19: over the `localized` answers, never more of them gross than there are.
+    ASSERT_TRUE(c.contains("gross_localized")) << c.dump();
+    EXPECT_LE(c.at("gross_localized").get<int>(), c.at("localized").get<int>()) << c.dump();
+    if (c.at("localized").get<int>() > 0) {
+      EXPECT_GE(c.at("coverage_2sigma").get<double>(), 0.0);
+      EXPECT_LE(c.at("coverage_2sigma").get<double>(), 1.0);
     }
   }
   std::ifstream in(csv);
@@ -113,8 +121,14 @@ TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
   std::getline(in, header);
   EXPECT_NE(header.find("success,wrong_prior,furniture"), std::string::npos) << header;
   EXPECT_NE(header.find("confidence"), std::string::npos) << header;
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "verdict") << header;
   int lines = 0;
-  while (std::getline(in, line)) ++lines;
+  while (std::getline(in, line)) {
+    ++lines;
+    const std::string verdict = line.substr(line.rfind(',') + 1);
+    EXPECT_TRUE(verdict == "localized" || verdict == "ambiguous" || verdict == "not localized")
+        << line;
+  }
   EXPECT_EQ(lines, 12 * 4);  // every trial of the four configurations
 }
 

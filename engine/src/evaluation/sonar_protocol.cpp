@@ -230,7 +230,7 @@ void score_trial(const Trial& trial, const std::string& map_name, int t,
     if (success) ++tally.successes;
     report.records.push_back({map_name, t, c, success, trial.wrong_prior, trial.furniture,
                               position_error, rad2deg(heading_error), estimate,
-                              trial.rejected_sonars});
+                              trial.rejected_sonars, truth});
   }
 }
 
@@ -239,9 +239,12 @@ ConfigurationResult summarize(const EvalOptions& options, std::size_t c, int tot
                               const ConfigurationTally& tally,
                               const std::vector<TrialRecord>& records) {
   std::vector<double> good, bad;  // confidences of successes and failures
+  std::vector<CalibrationSample> samples;
   for (const TrialRecord& record : records) {
     if (record.configuration == c) {
       (record.success ? good : bad).push_back(record.estimate.confidence);
+      const Estimate& e = record.estimate;
+      samples.push_back({e.pose, e.covariance, record.truth, e.verdict == Verdict::Localized});
     }
   }
   ConfigurationResult result;
@@ -254,6 +257,7 @@ ConfigurationResult summarize(const EvalOptions& options, std::size_t c, int tot
   result.median_ms = median(tally.ms);
   result.auroc = auroc(good, bad);
   result.failures_flagged_at_95_recall = flagged_at_recall(good, bad, 0.95);
+  result.calibration = summarize_calibration(samples);
   return result;
 }
 

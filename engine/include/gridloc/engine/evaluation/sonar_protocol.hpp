@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/evaluation/calibration.hpp"
 #include "gridloc/sensors/echo_filter.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
@@ -89,6 +90,8 @@ struct ConfigurationResult {
   /// The share of failures whose confidence lies below the threshold that keeps 95 % of
   /// the successes (their 5th percentile); NaN without both.
   double failures_flagged_at_95_recall = 0.0;
+  /// How well the `localized` answers' covariances cover their errors (issue 19).
+  CalibrationSummary calibration;
 };
 
 /// One trial of one configuration, for calibration studies (`gridloc eval --trials-out`).
@@ -103,6 +106,7 @@ struct TrialRecord {
   double heading_error_deg = 0.0;
   Estimate estimate;
   int rejected_sonars = 0;  ///< sonars the echo filter rejected (0 without it)
+  Pose2 truth;              ///< where the robot was
 };
 
 struct EvalReport {

@@ -1,0 +1,63 @@
+// Calibration measures of a reported covariance against the truth (issue 19).
+#include "gridloc/engine/evaluation/calibration.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace gridloc {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double position_error(const Pose2& estimate, const Pose2& truth) {
+  return std::hypot(estimate.x - truth.x, estimate.y - truth.y);
+}
+
+}  // namespace
+
+double pose_nees(const Pose2& estimate, const Eigen::Matrix3d& covariance, const Pose2& truth) {
+  if (!covariance.allFinite()) return kNaN;
+  const Eigen::LLT<Eigen::Matrix3d> factor(covariance);
+  if (factor.info() != Eigen::Success) return kNaN;  // not positive definite
+  const Eigen::Vector3d error(estimate.x - truth.x, estimate.y - truth.y,
+                              normalize_angle(estimate.theta - truth.theta));
+  return error.dot(factor.solve(error));
+}
+
+bool within_2sigma_radius(const Pose2& estimate, const Eigen::Matrix3d& covariance,
+                          const Pose2& truth) {
+  const double variance = 0.5 * (covariance(0, 0) + covariance(1, 1));
+  if (!std::isfinite(variance) || variance < 0.0) return false;
+  return position_error(estimate, truth) <= 2.0 * std::sqrt(variance);
+}
+
+bool gross_error(double position_error_m, double heading_error_deg) {
+  return position_error_m > 0.3 || heading_error_deg > 15.0;
+}
+
+CalibrationSummary summarize_calibration(const std::vector<CalibrationSample>& samples) {
+  CalibrationSummary summary;
+  double nees_sum = 0.0;
+  int nees_count = 0, covered = 0;
+  for (const CalibrationSample& s : samples) {
+    if (!s.localized) continue;
+    ++summary.localized;
+    const double nees = pose_nees(s.estimate, s.covariance, s.truth);
+    if (std::isfinite(nees)) {
+      nees_sum += nees;
+      ++nees_count;
+    }
+    covered += within_2sigma_radius(s.estimate, s.covariance, s.truth);
+    const double heading_deg =
+        std::abs(normalize_angle(s.estimate.theta - s.truth.theta)) * 180.0 / std::numbers::pi;
+    summary.gross_localized += gross_error(position_error(s.estimate, s.truth), heading_deg);
+  }
+  summary.nees_mean = nees_count > 0 ? nees_sum / nees_count : kNaN;
+  summary.coverage_2sigma =
+      summary.localized > 0 ? static_cast<double>(covered) / summary.localized : kNaN;
+  return summary;
+}
+
+}  // namespace gridloc
