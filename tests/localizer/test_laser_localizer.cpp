@@ -105,6 +105,37 @@ TEST(LaserLocalizer, OnTheOptionsGridTheDrivePlacesItToo) {
   expect_the_drive_places_it(false);
 }
 
+// LocalizerOptions::reported_floor_m/_rad: what the caller reads grows by the floor; the
+// places, poses and verdicts are those without it.
+TEST(LaserLocalizer, TheReportedCovarianceCarriesTheFloorAndNothingElseChanges) {
+  const OccupancyMap map = test::door_corridor();
+  LocalizerOptions bare = laser_options();
+  bare.reported_floor_m = bare.reported_floor_rad = 0.0;
+  LaserSensor laser = front_laser();
+  laser.fuse_drive = true;
+  Localizer with_floor(map, laser, laser_options()), without(map, laser, bare);
+  const LocalizerOptions defaults;
+  const Eigen::Vector3d floor(defaults.reported_floor_m * defaults.reported_floor_m,
+                              defaults.reported_floor_m * defaults.reported_floor_m,
+                              defaults.reported_floor_rad * defaults.reported_floor_rad);
+  EXPECT_GT(floor.minCoeff(), 0.0);
+  for (int k = 0; k <= 8; ++k) {
+    const Pose2 truth = compose({8.5, 2.5, 0.0}, {0.5 * k, 0.0, 0.0});
+    for (Localizer* localizer : {&with_floor, &without}) {
+      localizer->add_odometry(truth);
+      localizer->add_observation(k, test::front_scan(map, truth, kRange));
+    }
+    const Estimate a = with_floor.estimate(), b = without.estimate();
+    EXPECT_EQ(a.verdict, b.verdict) << k;
+    EXPECT_EQ(a.pose.x, b.pose.x) << k;
+    EXPECT_EQ(a.pose.theta, b.pose.theta) << k;
+    const Eigen::Matrix3d added = a.covariance - b.covariance;
+    EXPECT_TRUE(added.isApprox(Eigen::Matrix3d(floor.asDiagonal()), 1e-9)) << k << "\n" << added;
+  }
+  bare.reported_floor_m = -0.01;
+  test::expect_error([&] { Localizer broken(map, laser, bare); }, {"reported_floor_m"});
+}
+
 TEST(LaserLocalizer, TheTrackingGridIsALikelihoodFieldKeepingTheRest) {
   const CorrelationOptions options = with_laser_tracking_grid(laser_options().correlation);
   EXPECT_EQ(options.global, GlobalModel::LikelihoodField);

@@ -73,6 +73,10 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
   require(options.first_drop_ratio > 0.0 && options.first_drop_ratio <= 1.0, "first_drop_ratio",
           options.first_drop_ratio, "must lie in (0, 1]");
+  require(finite_at_least(options.reported_floor_m, 0.0), "reported_floor_m",
+          options.reported_floor_m, "must be finite and >= 0");
+  require(finite_at_least(options.reported_floor_rad, 0.0), "reported_floor_rad",
+          options.reported_floor_rad, "must be finite and >= 0");
   require(options.turn_fit_ratio >= 0.0 && options.turn_fit_ratio <= 1.0, "turn_fit_ratio",
           options.turn_fit_ratio, "must lie in [0, 1]");
   require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
@@ -291,6 +295,10 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   if (e.verdict == Verdict::Localized && !next.gate.admit({e.pose, e.covariance, taken_at})) {
     e.verdict = Verdict::NotLocalized;
     (had_reference ? next.status.jump_rejected : next.status.confirming) = true;
+  }
+  if (laser_) {  // after every decision: only what the caller reads grows
+    const double xy = options_.reported_floor_m, theta = options_.reported_floor_rad;
+    e.covariance += Eigen::Vector3d(xy * xy, xy * xy, theta * theta).asDiagonal().toDenseMatrix();
   }
   take_estimate(next, e, taken_at);
   std::unique_lock lock(mutex_);
