@@ -296,7 +296,10 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
     e.verdict = Verdict::NotLocalized;
     (had_reference ? next.status.jump_rejected : next.status.confirming) = true;
   }
-  if (laser_) {  // after every decision: only what the caller reads grows
+  // After every decision, only what the caller reads grows; an estimate carried over from
+  // the last update (no place left, no search) has its floor already.
+  const bool carried_over = next.set.hypotheses.empty() && !searched;
+  if (laser_ && !carried_over) {
     const double xy = options_.reported_floor_m, theta = options_.reported_floor_rad;
     e.covariance += Eigen::Vector3d(xy * xy, xy * xy, theta * theta).asDiagonal().toDenseMatrix();
   }

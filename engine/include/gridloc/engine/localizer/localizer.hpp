@@ -135,8 +135,8 @@ struct LocalizerOptions {
   SlicedSearchOptions research;
   /// The look-alikes a global search leaves, tracked through motion.
   HypothesisSetOptions hypothesis_set;
-  /// The first observation's search (nothing tracked yet) seeds its places scoring at
-  /// least this share of its best, where a re-search's seeds keep hypothesis_set.drop_ratio:
+  /// A laser's first search (nothing tracked yet) seeds its places scoring at least this
+  /// share of its best, where a re-search's seeds keep hypothesis_set.drop_ratio:
   /// with no track to weigh them against, the drive's scans, not the first one, pick among
   /// look-alikes (a corridor turned round fits one scan 3 % better than the truth as often
   /// as not). On 220 seeded trials of the shared buildings `localized` wrong after the drive
