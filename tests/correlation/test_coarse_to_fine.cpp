@@ -246,6 +246,9 @@ TEST(CoarseToFine, BadOptionsAreRefused) {
   options.ambiguity_ratio = 1.5;
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"ambiguity_ratio"});
   options = {};
+  options.ridge_ratio = 0.0;
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"ridge_ratio"});
+  options = {};
   options.half_xy_cells = std::nan("");
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"half_xy_cells"});
   test::expect_error([&] { CoarseToFineEstimator(nullptr, {}); }, {"no fine estimator"});

@@ -57,10 +57,22 @@ bool distinct(const Pose2& a, const Pose2& b, const CorrelationOptions& options)
          std::abs(normalize_angle(a.theta - b.theta)) > options.distinct_theta;
 }
 
+/// Whether a place apart from the best but within the verdict's ambiguity distances of it
+/// scores `ridge_ratio` of the best (CoarseToFineOptions::ridge_ratio).
+bool on_a_ridge(const Estimate& e, const VerdictOptions& verdict, double ridge_ratio) {
+  return std::any_of(e.alternatives.begin() + 1, e.alternatives.end(), [&](const Hypothesis& h) {
+    const double far = std::hypot(h.pose.x - e.lattice_pose.x, h.pose.y - e.lattice_pose.y);
+    const double turn = std::abs(normalize_angle(h.pose.theta - e.lattice_pose.theta));
+    return h.score >= ridge_ratio * e.score && far <= verdict.ambiguity_xy &&
+           turn <= verdict.ambiguity_theta;
+  });
+}
+
 /// The best refined place with the others as its hypotheses (distinct ones, best first, up to
-/// options.hypotheses), its second score and verdict as the exact search would give them.
+/// options.hypotheses), its second score and verdict as the exact search would give them, but
+/// for the ratios of `c2f` (CoarseToFineOptions::ambiguity_ratio, ridge_ratio).
 Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& options,
-                 double ambiguity_ratio) {
+                 const CoarseToFineOptions& c2f) {
   std::stable_sort(refined.begin(), refined.end(),
                    [](const Estimate& a, const Estimate& b) { return a.score > b.score; });
   Estimate e = refined.front();
@@ -80,20 +92,12 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
                            : e.score;
   e.second_below_floor = !second && floor;
   VerdictOptions verdict = options.verdict;
-  verdict.ambiguity_ratio = ambiguity_ratio;
+  verdict.ambiguity_ratio = c2f.ambiguity_ratio;
   correlation_detail::judge(e, second || e.second_below_floor, verdict);
+  if (e.verdict == Verdict::Localized && e.score > 0.0 && on_a_ridge(e, verdict, c2f.ridge_ratio)) {
+    e.verdict = Verdict::NotLocalized;
+  }
   return e;
-}
-
-/// Whether a place apart from the best but within the verdict's ambiguity distances of it
-/// scores `ridge_ratio` of the best (CoarseToFineOptions::ridge_ratio).
-bool on_a_ridge(const Estimate& e, const VerdictOptions& verdict, double ridge_ratio) {
-  return std::any_of(e.alternatives.begin() + 1, e.alternatives.end(), [&](const Hypothesis& h) {
-    const double far = std::hypot(h.pose.x - e.lattice_pose.x, h.pose.y - e.lattice_pose.y);
-    const double turn = std::abs(normalize_angle(h.pose.theta - e.lattice_pose.theta));
-    return h.score >= ridge_ratio * e.score && far <= verdict.ambiguity_xy &&
-           turn <= verdict.ambiguity_theta;
-  });
 }
 
 /// `pose` moved onto the nearest cell centre of `map` when it lies past the map's edge (the
@@ -155,11 +159,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   }
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
-  Estimate e = best_of(std::move(refined), fine_->options(), options_.ambiguity_ratio);
-  if (e.verdict == Verdict::Localized && e.score > 0.0 &&
-      on_a_ridge(e, fine_->options().verdict, options_.ridge_ratio)) {
-    e.verdict = Verdict::NotLocalized;
-  }
+  Estimate e = best_of(std::move(refined), fine_->options(), options_);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;

@@ -22,15 +22,23 @@ void require(bool ok, const char* field, double value, const char* rule) {
   throw Error(message.str());
 }
 
+/// Throws naming `field` unless `value` lies in [0, 1].
+void require_share(double value, const char* field) {
+  require(value >= 0.0 && value <= 1.0, field, value, "must lie in [0, 1]");
+}
+
+/// Throws naming `field` unless `value` is finite and >= 0.
+void require_non_negative(double value, const char* field) {
+  require(std::isfinite(value) && value >= 0.0, field, value, "must be finite and >= 0");
+}
+
 /// Throws unless the options are usable; runs before the global grids are built.
 const LocalizerOptions& checked(const LocalizerOptions& options) {
   const auto finite_at_least = [](double v, double low) { return std::isfinite(v) && v >= low; };
   require(finite_at_least(options.prior_sigmas, 0.0) && options.prior_sigmas > 0.0, "prior_sigmas",
           options.prior_sigmas, "must be finite and > 0");
-  require(finite_at_least(options.odometry_error_per_m, 0.0), "odometry_error_per_m",
-          options.odometry_error_per_m, "must be finite and >= 0");
-  require(finite_at_least(options.odometry_turn_error_per_m, 0.0), "odometry_turn_error_per_m",
-          options.odometry_turn_error_per_m, "must be finite and >= 0");
+  require_non_negative(options.odometry_error_per_m, "odometry_error_per_m");
+  require_non_negative(options.odometry_turn_error_per_m, "odometry_turn_error_per_m");
   require(finite_at_least(options.min_half_xy_m, 0.0) && options.min_half_xy_m > 0.0,
           "min_half_xy_m", options.min_half_xy_m, "must be finite and > 0");
   require(finite_at_least(options.max_half_xy_m, options.min_half_xy_m), "max_half_xy_m",
@@ -41,46 +49,31 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.max_half_theta, "must be finite and >= min_half_theta");
   require(options.misses_before_global >= 1, "misses_before_global", options.misses_before_global,
           "must be at least 1");
-  require(finite_at_least(options.max_range_slack_m, 0.0), "max_range_slack_m",
-          options.max_range_slack_m, "must be finite and >= 0");
-  require(finite_at_least(options.reseed_after_m, 0.0), "reseed_after_m", options.reseed_after_m,
-          "must be finite and >= 0");
+  require_non_negative(options.max_range_slack_m, "max_range_slack_m");
+  require_non_negative(options.reseed_after_m, "reseed_after_m");
   require(options.odometry_score_slack >= 0.0 && options.odometry_score_slack < 1.0,
           "odometry_score_slack", options.odometry_score_slack, "must lie in [0, 1)");
   require(options.split_ratio > 0.0 && options.split_ratio <= 1.0, "split_ratio",
           options.split_ratio, "must lie in (0, 1]");
-  require(finite_at_least(options.far_place_margin, 0.0), "far_place_margin",
-          options.far_place_margin, "must be finite and >= 0");
+  require_non_negative(options.far_place_margin, "far_place_margin");
   require(finite_at_least(options.wide_window_m, 0.0) && options.wide_window_m > 0.0,
           "wide_window_m", options.wide_window_m, "must be finite and > 0");
   require(options.wide_window_rad > 0.0 && std::isfinite(options.wide_window_rad),
           "wide_window_rad", options.wide_window_rad, "must be finite and > 0");
-  require(finite_at_least(options.step_min_m, 0.0), "step_min_m", options.step_min_m,
-          "must be finite and >= 0");
-  require(finite_at_least(options.step_min_rad, 0.0), "step_min_rad", options.step_min_rad,
-          "must be finite and >= 0");
-  require(finite_at_least(options.localized_sigma_m, 0.0), "localized_sigma_m",
-          options.localized_sigma_m, "must be finite and >= 0");
-  require(finite_at_least(options.localized_sigma_rad, 0.0), "localized_sigma_rad",
-          options.localized_sigma_rad, "must be finite and >= 0");
-  require(options.miss_fit_ratio >= 0.0 && options.miss_fit_ratio <= 1.0, "miss_fit_ratio",
-          options.miss_fit_ratio, "must lie in [0, 1]");
-  require(options.weak_fit_ratio >= 0.0 && options.weak_fit_ratio <= 1.0, "weak_fit_ratio",
-          options.weak_fit_ratio, "must lie in [0, 1]");
-  require(options.prior_fit_ratio >= 0.0 && options.prior_fit_ratio <= 1.0, "prior_fit_ratio",
-          options.prior_fit_ratio, "must lie in [0, 1]");
-  require(options.localized_fit_ratio >= 0.0 && options.localized_fit_ratio <= 1.0,
-          "localized_fit_ratio", options.localized_fit_ratio, "must lie in [0, 1]");
+  require_non_negative(options.step_min_m, "step_min_m");
+  require_non_negative(options.step_min_rad, "step_min_rad");
+  require_non_negative(options.localized_sigma_m, "localized_sigma_m");
+  require_non_negative(options.localized_sigma_rad, "localized_sigma_rad");
+  require_share(options.miss_fit_ratio, "miss_fit_ratio");
+  require_share(options.weak_fit_ratio, "weak_fit_ratio");
+  require_share(options.prior_fit_ratio, "prior_fit_ratio");
+  require_share(options.localized_fit_ratio, "localized_fit_ratio");
   require(options.first_drop_ratio > 0.0 && options.first_drop_ratio <= 1.0, "first_drop_ratio",
           options.first_drop_ratio, "must lie in (0, 1]");
-  require(finite_at_least(options.reported_floor_m, 0.0), "reported_floor_m",
-          options.reported_floor_m, "must be finite and >= 0");
-  require(finite_at_least(options.reported_floor_rad, 0.0), "reported_floor_rad",
-          options.reported_floor_rad, "must be finite and >= 0");
-  require(options.turn_fit_ratio >= 0.0 && options.turn_fit_ratio <= 1.0, "turn_fit_ratio",
-          options.turn_fit_ratio, "must lie in [0, 1]");
-  require(finite_at_least(options.odometry_turn_error_per_rad, 0.0), "odometry_turn_error_per_rad",
-          options.odometry_turn_error_per_rad, "must be finite and >= 0");
+  require_non_negative(options.reported_floor_m, "reported_floor_m");
+  require_non_negative(options.reported_floor_rad, "reported_floor_rad");
+  require_share(options.turn_fit_ratio, "turn_fit_ratio");
+  require_non_negative(options.odometry_turn_error_per_rad, "odometry_turn_error_per_rad");
   validate(options.drive);
   validate(options.hypothesis_set);
   validate(options.weights);
