@@ -32,7 +32,7 @@ struct RelationsArgs {
 
 constexpr const char* kTrialsHeader =
     "pair,t1,t2,motion_m,motion_deg,returns,translation_error_m,rotation_error_deg,ms,converged,"
-    "failed,verdict,confidence,refined,search_cells";
+    "failed,verdict,confidence,refined,search_cells,overlap";
 
 /// One trial as a CSV row of kTrialsHeader (verdict and confidence empty for icp).
 std::string trial_row(const RelationTrial& t) {
@@ -47,7 +47,7 @@ std::string trial_row(const RelationTrial& t) {
     std::snprintf(buf, sizeof buf, "%.4f", t.confidence);
     row += buf;
   }
-  std::snprintf(buf, sizeof buf, ",%d,%zu", t.refined ? 1 : 0, t.search_cells);
+  std::snprintf(buf, sizeof buf, ",%d,%zu,%.4f", t.refined ? 1 : 0, t.search_cells, t.overlap);
   return row + buf;
 }
 
@@ -57,6 +57,23 @@ void write_trials(std::ofstream& out, const std::string& path, const RelationEva
   for (const RelationTrial& t : report.trials) out << trial_row(t) << '\n';
   out.flush();
   if (!out) throw Error("--trials-out: writing " + path + " failed");
+}
+
+/// A failure table as JSON rows {key: label, "pairs", "failures"}.
+nlohmann::json failure_rows(const std::vector<FailureRow>& rows, const char* key) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const FailureRow& row : rows)
+    out.push_back({{key, row.label}, {"pairs", row.pairs}, {"failures", row.failures}});
+  return out;
+}
+
+/// A failure table as text lines under `title`.
+void print_rows(const char* title, const std::vector<FailureRow>& rows) {
+  std::printf("failures by %s:\n", title);
+  for (const FailureRow& row : rows) {
+    std::printf("  %-14s %5d pairs, %4d failures (%.1f %%)\n", row.label.c_str(), row.pairs,
+                row.failures, row.pairs > 0 ? 100.0 * row.failures / row.pairs : 0.0);
+  }
 }
 
 void run(const RelationsArgs& args) {
@@ -88,6 +105,12 @@ void run(const RelationsArgs& args) {
       {"failures", report.failures},
       {"not_converged", report.not_converged},
       {"median_ms", report.median_ms},
+      {"failures_by_overlap", failure_rows(report.failures_by_overlap, "band")},
+      {"failures_by_verdict", failure_rows(report.failures_by_verdict, "verdict")},
+      {"overlapping",
+       {{"min_overlap", options.overlapping_share},
+        {"pairs", report.overlapping.pairs},
+        {"failures", report.overlapping.failures}}},
       {"seed", args.options.seed}};
   if (args.json) {
     std::cout << out.dump(2) << "\n";
@@ -99,6 +122,11 @@ void run(const RelationsArgs& args) {
       args.estimator.c_str(), report.pairs, relations.size(), report.translation_error_m.mean,
       report.translation_error_m.std, report.rotation_error_deg.mean, report.rotation_error_deg.std,
       report.failures, report.median_ms);
+  print_rows("overlap (share of the current scan's returns near the reference's)",
+             report.failures_by_overlap);
+  print_rows("verdict", report.failures_by_verdict);
+  std::printf("%s: %d pairs, %d failures\n", report.overlapping.label.c_str(),
+              report.overlapping.pairs, report.overlapping.failures);
 }
 
 }  // namespace
@@ -174,6 +202,13 @@ void add_relations(CLI::App& app) {
   cmd->add_flag("--icp-from-prior", args->options.icp_from_prior,
                 "correlation+icp: ICP from the prior too; the answer fitting more pairs wins");
   args->search.add_to(cmd);
+  cmd->add_option("--overlap-radius", args->options.overlap_radius_m,
+                  "a return overlaps when it lies within this of the other scan's at the true "
+                  "motion (m)")
+      ->capture_default_str();
+  cmd->add_option("--overlapping", args->options.overlapping_share,
+                  "pairs sharing at least this share of returns count as overlapping")
+      ->capture_default_str();
   cmd->add_option("--max-search-mb", args->options.max_search_mb,
                   "refuse a pair whose correlation search grids would take more (MB)")
       ->capture_default_str();

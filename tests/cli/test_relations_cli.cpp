@@ -30,7 +30,7 @@ using test::TempDir;
 
 const std::string kHeader =
     "pair,t1,t2,motion_m,motion_deg,returns,translation_error_m,rotation_error_deg,ms,converged,"
-    "failed,verdict,confidence,refined,search_cells";
+    "failed,verdict,confidence,refined,search_cells,overlap";
 
 /// A 7 m x 4 m room with a box and a pillar (no symmetry to confuse a matcher).
 std::vector<WallSegment> room() {
@@ -105,7 +105,7 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
   int failed = 0;
   double mean = 0.0;
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 15u) << k;
+    ASSERT_EQ(rows[k].size(), 16u) << k;
     EXPECT_EQ(rows[k][0], std::to_string(k - 1));                  // pair
     EXPECT_EQ(std::stod(rows[k][1]), static_cast<double>(k - 1));  // t1
     EXPECT_EQ(std::stod(rows[k][2]), static_cast<double>(k));      // t2
@@ -115,6 +115,7 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
         << rows[k][11];
     EXPECT_FALSE(rows[k][12].empty());  // confidence
     EXPECT_GT(std::stol(rows[k][14]), 0);
+    EXPECT_GT(std::stod(rows[k][15]), 0.9);  // overlap: the room seen twice
     failed += std::stoi(rows[k][10]);
     mean += std::stod(rows[k][6]) / 3.0;
   }
@@ -123,6 +124,20 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
   EXPECT_EQ(j.at("failures").get<int>(), failed);
   EXPECT_NEAR(j.at("translation_error_m").at("mean").get<double>(), mean, 1e-5);
   EXPECT_LT(mean, 0.01);
+  // The failure tables count every pair once.
+  int by_band = 0, by_verdict = 0;
+  for (const auto& row : j.at("failures_by_overlap")) by_band += row.at("pairs").get<int>();
+  for (const auto& row : j.at("failures_by_verdict")) by_verdict += row.at("pairs").get<int>();
+  EXPECT_EQ(by_band, 3);
+  EXPECT_EQ(by_verdict, 3);
+  EXPECT_EQ(j.at("failures_by_overlap").back().at("band"), "0.8-1");
+  EXPECT_EQ(j.at("overlapping").at("pairs").get<int>(), 3);
+  EXPECT_EQ(j.at("overlapping").at("min_overlap").get<double>(), 0.5);
+}
+
+TEST_F(RelationsCli, BadOverlapOptionsAreOneLine) {
+  expect_cli_error(relations_run("--overlapping 2"), {"overlapping_share", "<= 1"});
+  expect_cli_error(relations_run("--overlap-radius -1"), {"overlap_radius_m"});
 }
 
 TEST_F(RelationsCli, IcpTrialsHaveNoVerdict) {
@@ -132,7 +147,7 @@ TEST_F(RelationsCli, IcpTrialsHaveNoVerdict) {
   const auto rows = csv(out);
   ASSERT_EQ(rows.size(), 4u);
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 15u) << k;
+    ASSERT_EQ(rows[k].size(), 16u) << k;
     EXPECT_EQ(rows[k][11], "");   // verdict
     EXPECT_EQ(rows[k][12], "");   // confidence
     EXPECT_EQ(rows[k][14], "0");  // no search grid

@@ -75,6 +75,34 @@ TEST_F(RelationTrials, OnePerPairAndTheTotalsFollowThem) {
   EXPECT_NEAR(r.translation_error_m.mean, mean, 1e-15);
 }
 
+TEST_F(RelationTrials, TablesCountEveryPairByOverlapAndVerdict) {
+  RelationEvalOptions o;
+  o.matcher = EstimatorKind::Correlation;
+  const RelationEvalReport r = evaluate_relations(log, pairs, o);
+  for (const RelationTrial& t : r.trials) EXPECT_GT(t.overlap, 0.9);  // a room seen twice
+  ASSERT_EQ(r.failures_by_overlap.size(), 5u);
+  EXPECT_EQ(r.failures_by_overlap.back().label, "0.8-1");
+  EXPECT_EQ(r.failures_by_overlap.back().pairs, 3);
+  EXPECT_EQ(r.overlapping.pairs, 3);
+  EXPECT_EQ(r.overlapping.failures, r.failures);
+  int pairs_by_verdict = 0, failures_by_verdict = 0;
+  for (const FailureRow& row : r.failures_by_verdict) {
+    EXPECT_NE(row.label, "none");
+    pairs_by_verdict += row.pairs;
+    failures_by_verdict += row.failures;
+  }
+  EXPECT_EQ(pairs_by_verdict, 3);
+  EXPECT_EQ(failures_by_verdict, r.failures);
+  // ICP alone has one row, "none"; pairs overlapping less than asked are left out.
+  RelationEvalOptions icp;
+  icp.overlapping_share = 1.0;
+  const RelationEvalReport i = evaluate_relations(log, pairs, icp);
+  ASSERT_EQ(i.failures_by_verdict.size(), 1u);
+  EXPECT_EQ(i.failures_by_verdict[0].label, "none");
+  EXPECT_EQ(i.failures_by_verdict[0].pairs, 3);
+  EXPECT_LT(i.overlapping.pairs, 3);
+}
+
 TEST_F(RelationTrials, IcpFromThePriorTooKeepsExactRelations) {
   RelationEvalOptions o;
   o.matcher = EstimatorKind::CorrelationIcp;
@@ -151,6 +179,9 @@ TEST_F(RelationTrials, BadOptionsNameTheField) {
   expect_bad([](RelationEvalOptions& o) { o.window_margin_theta = -1.0; }, "window_margin_theta");
   expect_bad([&](RelationEvalOptions& o) { o.refine_max_shift_m = nan; }, "refine_max_shift_m");
   expect_bad([](RelationEvalOptions& o) { o.max_search_mb = 0.0; }, "max_search_mb");
+  expect_bad([](RelationEvalOptions& o) { o.overlap_radius_m = 0.0; }, "overlap_radius_m");
+  expect_bad([](RelationEvalOptions& o) { o.overlapping_share = 1.5; }, "overlapping_share");
+  expect_bad([](RelationEvalOptions& o) { o.overlap_band_edges = {0.5, 0.5}; }, "overlap bands");
   EXPECT_NO_THROW(validate(RelationEvalOptions{}));
 }
 

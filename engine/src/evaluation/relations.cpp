@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -162,6 +163,13 @@ void validate(const RelationEvalOptions& o) {
   at_least(o.refine_max_shift_m, 0.0, false, "refine_max_shift_m");
   at_least(o.refine_max_turn_rad, 0.0, false, "refine_max_turn_rad");
   at_least(o.max_search_mb, 0.0, true, "max_search_mb");
+  at_least(o.overlap_radius_m, 0.0, true, "overlap_radius_m");
+  at_least(o.overlapping_share, 0.0, false, "overlapping_share");
+  if (o.overlapping_share > 1.0) {
+    throw Error("relations options: overlapping_share must be <= 1, got " +
+                std::to_string(o.overlapping_share));
+  }
+  failures_by_band({}, {}, o.overlap_band_edges);  // throws for edges out of order
 }
 
 PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& current,
@@ -243,7 +251,10 @@ RelationTrial run_trial(const CarmenLog& log, const RelationPair& pair, std::siz
   trial.t2 = pair.relation.t2;
   trial.motion_m = std::hypot(pair.relation.motion.x, pair.relation.motion.y);
   trial.motion_deg = rad2deg(std::abs(normalize_angle(pair.relation.motion.theta)));
-  trial.returns = static_cast<int>(scan_returns(second.scan).size());
+  const auto current_points = scan_returns(second.scan);
+  trial.returns = static_cast<int>(current_points.size());
+  trial.overlap = scan_overlap(scan_returns(first.scan), current_points, pair.relation.motion,
+                               options.overlap_radius_m);
   // The benchmark's error: the estimate seen from the true motion.
   const Pose2 error = relative_pose(pair.relation.motion, match.pose);
   trial.translation_error_m = std::hypot(error.x, error.y);
@@ -258,8 +269,39 @@ RelationTrial run_trial(const CarmenLog& log, const RelationPair& pair, std::siz
   return trial;
 }
 
+/// The verdict's row label: "none" for a matcher without one (ICP alone).
+std::string verdict_label(const std::optional<Verdict>& verdict) {
+  return verdict ? to_string(*verdict) : "none";
+}
+
+/// The failure tables of `report`'s trials: by overlap band, by verdict and overlapping.
+void tabulate_failures(RelationEvalReport& report, const RelationEvalOptions& options) {
+  std::vector<double> overlaps;
+  std::vector<bool> failed;
+  char overlapping[48];
+  std::snprintf(overlapping, sizeof overlapping, "overlap >= %g", options.overlapping_share);
+  report.overlapping.label = overlapping;
+  for (const RelationTrial& t : report.trials) {
+    overlaps.push_back(t.overlap);
+    failed.push_back(t.failed);
+    if (t.overlap < options.overlapping_share) continue;
+    ++report.overlapping.pairs;
+    if (t.failed) ++report.overlapping.failures;
+  }
+  report.failures_by_overlap = failures_by_band(overlaps, failed, options.overlap_band_edges);
+  for (const char* label : {"localized", "ambiguous", "not localized", "none"}) {
+    FailureRow row{label, 0, 0};
+    for (const RelationTrial& t : report.trials) {
+      if (verdict_label(t.verdict) != label) continue;
+      ++row.pairs;
+      if (t.failed) ++row.failures;
+    }
+    if (row.pairs > 0) report.failures_by_verdict.push_back(row);
+  }
+}
+
 /// The report's totals from its trials.
-void summarize(RelationEvalReport& report) {
+void summarize(RelationEvalReport& report, const RelationEvalOptions& options) {
   std::vector<double> translation_errors, rotation_errors, ms;
   for (const RelationTrial& t : report.trials) {
     translation_errors.push_back(t.translation_error_m);
@@ -273,6 +315,7 @@ void summarize(RelationEvalReport& report) {
   report.rotation_error_deg = error_stats(rotation_errors);
   std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
   report.median_ms = ms[ms.size() / 2];
+  tabulate_failures(report, options);
 }
 
 }  // namespace
@@ -293,7 +336,7 @@ RelationEvalReport evaluate_relations(const CarmenLog& log, const std::vector<Re
     const Pose2 prior = noisy_prior(log, pair, options, rng);
     report.trials.push_back(run_trial(log, pair, k, prior, options));
   }
-  summarize(report);
+  summarize(report, options);
   return report;
 }
 

@@ -11,6 +11,7 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/engine/estimator.hpp"
+#include "gridloc/engine/evaluation/scan_overlap.hpp"
 #include "gridloc/engine/icp/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
 #include "gridloc/sensors/slam_relations.hpp"
@@ -56,6 +57,14 @@ struct RelationEvalOptions {
   /// Correlation + ICP: ICP also runs from the prior, and its pose wins when it converged
   /// with more fitting pairs (IcpResult::fitting_pairs) than ICP from the search's.
   bool icp_from_prior = false;
+  /// A pair's overlap (scan_overlap): the share of the current scan's returns within this of
+  /// the reference scan's at the relation's true motion (m).
+  double overlap_radius_m = 0.2;
+  /// The failure table's overlap bands: [0, e0), [e0, e1), ..., [eN, 1].
+  std::vector<double> overlap_band_edges = {0.2, 0.4, 0.6, 0.8};
+  /// Pairs overlapping at least this much "overlap" (RelationEvalReport::overlapping): below
+  /// it the scans share too little for a match to be asked of them.
+  double overlapping_share = 0.5;
 };
 
 /// Checks the options; throws gridloc::Error naming the field and its value (negative or
@@ -97,6 +106,7 @@ struct RelationTrial {
   double confidence = std::numeric_limits<double>::quiet_NaN();
   bool refined = false;          ///< PairMatch::refined
   std::size_t search_cells = 0;  ///< PairMatch::search_cells
+  double overlap = 0.0;          ///< scan_overlap at the relation's motion
 };
 
 struct RelationEvalReport {
@@ -107,6 +117,13 @@ struct RelationEvalReport {
   int not_converged = 0;   ///< ICP alone: matches that did not converge (counted as failures)
   double median_ms = 0.0;  ///< per match, the reference map's construction included
   std::vector<RelationTrial> trials;  ///< every pair, in the order given
+  /// Pairs and failures per overlap band (RelationEvalOptions::overlap_band_edges)...
+  std::vector<FailureRow> failures_by_overlap;
+  /// ...per verdict of the search ("localized", "ambiguous", "not localized"; "none" for
+  /// ICP alone), in that order, rows without pairs left out...
+  std::vector<FailureRow> failures_by_verdict;
+  /// ...and over the pairs overlapping at least RelationEvalOptions::overlapping_share.
+  FailureRow overlapping;
 };
 
 /// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
