@@ -187,6 +187,16 @@ void add_relations(CLI::App& app) {
   cmd->add_option("--map-resolution", args->options.map_resolution,
                   "correlation: cell of the reference scan's map = translation step (m)")
       ->capture_default_str();
+  cmd->add_flag("!--no-join-returns", args->options.join_returns,
+                "correlation: draw the reference scan's returns alone, not joined into walls");
+  cmd->add_option("--join-gap", args->options.join_gap_m,
+                  "correlation: consecutive returns closer than this plus the range-adaptive "
+                  "part are one wall (m)")
+      ->capture_default_str();
+  cmd->add_option("--join-grazing-angle", args->options.join_grazing_rad,
+                  "correlation: the range-adaptive part joins walls seen down to this grazing "
+                  "angle (rad; 0: the fixed gap alone)")
+      ->capture_default_str();
   cmd->add_option("--window-margin-xy", args->options.window_margin_xy,
                   "correlation: the window covers the prior's noise plus this (m)")
       ->capture_default_str();

@@ -138,6 +138,7 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
 TEST_F(RelationsCli, BadOverlapOptionsAreOneLine) {
   expect_cli_error(relations_run("--overlapping 2"), {"overlapping_share", "<= 1"});
   expect_cli_error(relations_run("--overlap-radius -1"), {"overlap_radius_m"});
+  expect_cli_error(relations_run("--join-grazing-angle 2"), {"join_grazing_rad", "pi/2"});
 }
 
 TEST_F(RelationsCli, IcpTrialsHaveNoVerdict) {

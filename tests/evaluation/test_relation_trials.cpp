@@ -180,6 +180,8 @@ TEST_F(RelationTrials, BadOptionsNameTheField) {
   expect_bad([&](RelationEvalOptions& o) { o.refine_max_shift_m = nan; }, "refine_max_shift_m");
   expect_bad([](RelationEvalOptions& o) { o.max_search_mb = 0.0; }, "max_search_mb");
   expect_bad([](RelationEvalOptions& o) { o.overlap_radius_m = 0.0; }, "overlap_radius_m");
+  expect_bad([](RelationEvalOptions& o) { o.join_gap_m = -0.1; }, "join_gap_m");
+  expect_bad([](RelationEvalOptions& o) { o.join_grazing_rad = 1.6; }, "join_grazing_rad");
   expect_bad([](RelationEvalOptions& o) { o.overlapping_share = 1.5; }, "overlapping_share");
   expect_bad([](RelationEvalOptions& o) { o.overlap_band_edges = {0.5, 0.5}; }, "overlap bands");
   EXPECT_NO_THROW(validate(RelationEvalOptions{}));

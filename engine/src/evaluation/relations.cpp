@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <iomanip>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -86,8 +87,13 @@ Estimate correlate(const RangeScan& reference, const RangeScan& current,
   // The reference scan as a map whose world frame is the reference robot's frame.
   // Its margin keeps the whole search window on the map.
   const double half_xy = options.prior_noise_xy + options.window_margin_xy;
-  OccupancyMap map = scan_occupancy_map(reference, options.map_resolution,
-                                        0.5 + std::hypot(prior.x, prior.y) + 1.5 * half_xy);
+  ScanMapOptions drawing;
+  drawing.resolution = options.map_resolution;
+  drawing.margin_m = 0.5 + std::hypot(prior.x, prior.y) + 1.5 * half_xy;
+  drawing.join_returns = options.join_returns;
+  drawing.join_gap_m = options.join_gap_m;
+  drawing.join_grazing_rad = options.join_grazing_rad;
+  OccupancyMap map = scan_occupancy_map(reference, drawing);
   // The current scan's max range cut to its farthest return: the padding then covers what
   // the scan reaches, not the logger's 80 m "no return".
   RangeScan cut = current;
@@ -159,6 +165,12 @@ void validate(const RelationEvalOptions& o) {
   at_least(o.failure_theta, 0.0, true, "failure_theta");
   at_least(o.map_resolution, 0.0, true, "map_resolution");
   at_least(o.window_margin_xy, 0.0, false, "window_margin_xy");
+  at_least(o.join_gap_m, 0.0, false, "join_gap_m");
+  at_least(o.join_grazing_rad, 0.0, false, "join_grazing_rad");
+  if (o.join_grazing_rad >= 0.5 * std::numbers::pi) {
+    throw Error("relations options: join_grazing_rad must be < pi/2, got " +
+                std::to_string(o.join_grazing_rad));
+  }
   at_least(o.window_margin_theta, 0.0, false, "window_margin_theta");
   at_least(o.refine_max_shift_m, 0.0, false, "refine_max_shift_m");
   at_least(o.refine_max_turn_rad, 0.0, false, "refine_max_turn_rad");

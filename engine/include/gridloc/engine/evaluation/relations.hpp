@@ -37,10 +37,15 @@ struct RelationEvalOptions {
   double failure_theta = 0.0872664625997;  ///< 5 deg
   IcpOptions icp;
   /// The correlation matchers: the reference scan becomes a map of this resolution
-  /// (scan_occupancy_map), searched with `correlation` (branch and bound, hits) over a window
-  /// around the prior covering its noise plus window_margin_xy and window_margin_theta, in
-  /// heading steps that move the farthest return by about a cell.
+  /// (scan_occupancy_map, its returns joined into walls), searched with `correlation` (branch and
+  /// bound, hits) over a window around the prior covering its noise plus window_margin_xy and
+  /// window_margin_theta, in heading steps that move the farthest return by about a cell.
   double map_resolution = 0.05;
+  /// The reference scan's map joins its consecutive returns into walls within the adaptive
+  /// breakpoint gap (ScanMapOptions: join_returns, join_gap_m, join_grazing_rad).
+  bool join_returns = true;
+  double join_gap_m = 0.05;
+  double join_grazing_rad = 0.174532925199;  ///< 10 deg
   double window_margin_xy = 0.1;
   double window_margin_theta = 0.0349065850399;  ///< 2 deg
   /// The search's options (resolution and reach_m are set per pair). Exhaustive by default:

@@ -1,0 +1,16 @@
+#pragma once
+/// Where a scan's consecutive returns stop being one wall: the adaptive breakpoint detector
+/// of Borges and Aldon, shared by ICP's segmentation (seed 004) and the one-scan maps of the
+/// relations protocol (issue 30).
+#include <limits>
+
+namespace gridloc {
+
+/// The growth of the breakpoint gap with range: neighbours on a wall seen at grazing angle
+/// `grazing_rad` by beams `step_rad` apart lie range * sin(step) / sin(grazing - step) apart.
+/// 0 when step > grazing / 2 (near the grazing angle the ratio explodes and would join every
+/// beam) or grazing is 0; at most `cap_steps` beam spacings (sin(step) each).
+double breakpoint_growth(double step_rad, double grazing_rad,
+                         double cap_steps = std::numeric_limits<double>::infinity());
+
+}  // namespace gridloc
