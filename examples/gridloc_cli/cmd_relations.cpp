@@ -1,10 +1,13 @@
 // gridloc relations: scan matching on a real log, scored against the SLAM benchmark's
 // ground-truth relations (issue 5).
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include "commands.hpp"
@@ -32,7 +35,8 @@ struct RelationsArgs {
 
 constexpr const char* kTrialsHeader =
     "pair,t1,t2,motion_m,motion_deg,returns,translation_error_m,rotation_error_deg,ms,converged,"
-    "failed,verdict,confidence,refined,search_cells,overlap";
+    "failed,verdict,confidence,refined,search_cells,overlap,sigma_major_m,sigma_minor_m,"
+    "sigma_theta_deg,within_2sigma,answer_overlap";
 
 /// One trial as a CSV row of kTrialsHeader (verdict and confidence empty for icp).
 std::string trial_row(const RelationTrial& t) {
@@ -48,6 +52,12 @@ std::string trial_row(const RelationTrial& t) {
     row += buf;
   }
   std::snprintf(buf, sizeof buf, ",%d,%zu,%.4f", t.refined ? 1 : 0, t.search_cells, t.overlap);
+  row += buf;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(t.covariance.topLeftCorner<2, 2>());
+  const auto sigma = [](double variance) { return std::sqrt(std::max(0.0, variance)); };
+  std::snprintf(buf, sizeof buf, ",%.4f,%.4f,%.4f,%d,%.4f", sigma(axes.eigenvalues()(1)),
+                sigma(axes.eigenvalues()(0)), sigma(t.covariance(2, 2)) * 180.0 / std::numbers::pi,
+                t.within_2sigma ? 1 : 0, t.answer_overlap);
   return row + buf;
 }
 
@@ -57,6 +67,11 @@ void write_trials(std::ofstream& out, const std::string& path, const RelationEva
   for (const RelationTrial& t : report.trials) out << trial_row(t) << '\n';
   out.flush();
   if (!out) throw Error("--trials-out: writing " + path + " failed");
+}
+
+/// A number, or null when it is not finite.
+nlohmann::json json_number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 /// A failure table as JSON rows {key: label, "pairs", "failures"}.
@@ -111,6 +126,11 @@ void run(const RelationsArgs& args) {
        {{"min_overlap", options.overlapping_share},
         {"pairs", report.overlapping.pairs},
         {"failures", report.overlapping.failures}}},
+      {"calibration",
+       {{"answers", report.calibration.localized},
+        {"nees_mean", json_number(report.calibration.nees_mean)},
+        {"coverage_2sigma", json_number(report.calibration.coverage_2sigma)},
+        {"failures_within_2sigma", report.covered_failures}}},
       {"seed", args.options.seed}};
   if (args.json) {
     std::cout << out.dump(2) << "\n";
@@ -127,6 +147,11 @@ void run(const RelationsArgs& args) {
   print_rows("verdict", report.failures_by_verdict);
   std::printf("%s: %d pairs, %d failures\n", report.overlapping.label.c_str(),
               report.overlapping.pairs, report.overlapping.failures);
+  const CalibrationSummary& c = report.calibration;
+  std::printf(
+      "answers used (localized; icp: converged): %d, NEES %.2f, within the 2-sigma ellipse "
+      "%.1f %%, failures within it %d\n",
+      c.localized, c.nees_mean, 100.0 * c.coverage_2sigma, report.covered_failures);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ using test::TempDir;
 
 const std::string kHeader =
     "pair,t1,t2,motion_m,motion_deg,returns,translation_error_m,rotation_error_deg,ms,converged,"
-    "failed,verdict,confidence,refined,search_cells,overlap";
+    "failed,verdict,confidence,refined,search_cells,overlap,sigma_major_m,sigma_minor_m,"
+    "sigma_theta_deg,within_2sigma,answer_overlap";
 
 /// A 7 m x 4 m room with a box and a pillar (no symmetry to confuse a matcher).
 std::vector<WallSegment> room() {
@@ -105,7 +106,7 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
   int failed = 0;
   double mean = 0.0;
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 16u) << k;
+    ASSERT_EQ(rows[k].size(), 21u) << k;
     EXPECT_EQ(rows[k][0], std::to_string(k - 1));                  // pair
     EXPECT_EQ(std::stod(rows[k][1]), static_cast<double>(k - 1));  // t1
     EXPECT_EQ(std::stod(rows[k][2]), static_cast<double>(k));      // t2
@@ -115,7 +116,11 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
         << rows[k][11];
     EXPECT_FALSE(rows[k][12].empty());  // confidence
     EXPECT_GT(std::stol(rows[k][14]), 0);
-    EXPECT_GT(std::stod(rows[k][15]), 0.9);  // overlap: the room seen twice
+    EXPECT_GT(std::stod(rows[k][15]), 0.9);                     // overlap: the room seen twice
+    EXPECT_GT(std::stod(rows[k][16]), 0.0);                     // sigma_major_m
+    EXPECT_LE(std::stod(rows[k][17]), std::stod(rows[k][16]));  // sigma_minor_m
+    EXPECT_EQ(rows[k][19], "1");                                // within_2sigma: an exact match
+    EXPECT_GT(std::stod(rows[k][20]), 0.9);                     // answer_overlap
     failed += std::stoi(rows[k][10]);
     mean += std::stod(rows[k][6]) / 3.0;
   }
@@ -133,6 +138,8 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
   EXPECT_EQ(j.at("failures_by_overlap").back().at("band"), "0.8-1");
   EXPECT_EQ(j.at("overlapping").at("pairs").get<int>(), 3);
   EXPECT_EQ(j.at("overlapping").at("min_overlap").get<double>(), 0.5);
+  EXPECT_EQ(j.at("calibration").at("answers").get<int>(),
+            j.at("failures_by_verdict")[0].at("pairs").get<int>());
 }
 
 TEST_F(RelationsCli, BadOverlapOptionsAreOneLine) {
@@ -148,7 +155,7 @@ TEST_F(RelationsCli, IcpTrialsHaveNoVerdict) {
   const auto rows = csv(out);
   ASSERT_EQ(rows.size(), 4u);
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 16u) << k;
+    ASSERT_EQ(rows[k].size(), 21u) << k;
     EXPECT_EQ(rows[k][11], "");   // verdict
     EXPECT_EQ(rows[k][12], "");   // confidence
     EXPECT_EQ(rows[k][14], "0");  // no search grid

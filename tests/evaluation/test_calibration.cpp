@@ -53,6 +53,26 @@ TEST(Calibration, TheTwoSigmaRadiusUsesTheMeanPositionVariance) {
   EXPECT_FALSE(within_2sigma_radius({0.0, 0.0, 0.0}, bad, {0, 0, 0}));
 }
 
+TEST(Calibration, TheTwoSigmaEllipseFollowsACorridor) {
+  // A corridor along x: sigma 0.2 m along it, 0.02 m across, turned by 30 degrees.
+  const double c = std::cos(std::numbers::pi / 6), s = std::sin(std::numbers::pi / 6);
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  Eigen::Matrix2d rotate;
+  rotate << c, -s, s, c;
+  covariance.topLeftCorner<2, 2>() =
+      rotate * Eigen::Vector2d(0.04, 0.0004).asDiagonal() * rotate.transpose();
+  covariance(2, 2) = 1e-4;
+  // 0.39 m along the corridor is within 2 sigma; 0.05 m across it is not.
+  EXPECT_TRUE(within_2sigma_ellipse({0.39 * c, 0.39 * s, 0.0}, covariance, {0, 0, 0}));
+  EXPECT_FALSE(within_2sigma_ellipse({0.41 * c, 0.41 * s, 0.0}, covariance, {0, 0, 0}));
+  EXPECT_FALSE(within_2sigma_ellipse({-0.05 * s, 0.05 * c, 0.0}, covariance, {0, 0, 0}));
+  EXPECT_TRUE(within_2sigma_ellipse({-0.03 * s, 0.03 * c, 0.0}, covariance, {0, 0, 0}));
+  // The radius test of the mean variance (sigma 0.14 m) says otherwise along and across.
+  EXPECT_FALSE(within_2sigma_radius({0.39 * c, 0.39 * s, 0.0}, covariance, {0, 0, 0}));
+  EXPECT_TRUE(within_2sigma_radius({-0.05 * s, 0.05 * c, 0.0}, covariance, {0, 0, 0}));
+  EXPECT_FALSE(within_2sigma_ellipse({0, 0, 0}, Eigen::Matrix3d::Zero(), {0, 0, 0}));
+}
+
 TEST(Calibration, GrossIsBeyondThirtyCentimetresOrFifteenDegrees) {
   EXPECT_FALSE(gross_error(0.3, 15.0));
   EXPECT_TRUE(gross_error(0.31, 0.0));

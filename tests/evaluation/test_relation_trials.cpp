@@ -79,7 +79,16 @@ TEST_F(RelationTrials, TablesCountEveryPairByOverlapAndVerdict) {
   RelationEvalOptions o;
   o.matcher = EstimatorKind::Correlation;
   const RelationEvalReport r = evaluate_relations(log, pairs, o);
-  for (const RelationTrial& t : r.trials) EXPECT_GT(t.overlap, 0.9);  // a room seen twice
+  int localized = 0;
+  for (const RelationTrial& t : r.trials) {
+    EXPECT_GT(t.overlap, 0.9);  // a room seen twice
+    EXPECT_GT(t.answer_overlap, 0.9);
+    EXPECT_EQ(t.truth.x, pairs[t.pair].relation.motion.x);
+    EXPECT_GT(t.covariance(0, 0), 0.0);
+    localized += t.verdict == Verdict::Localized;
+  }
+  EXPECT_EQ(r.calibration.localized, localized);
+  EXPECT_EQ(r.covered_failures, 0);
   ASSERT_EQ(r.failures_by_overlap.size(), 5u);
   EXPECT_EQ(r.failures_by_overlap.back().label, "0.8-1");
   EXPECT_EQ(r.failures_by_overlap.back().pairs, 3);

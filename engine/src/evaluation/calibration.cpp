@@ -33,6 +33,16 @@ bool within_2sigma_radius(const Pose2& estimate, const Eigen::Matrix3d& covarian
   return position_error(estimate, truth) <= 2.0 * std::sqrt(variance);
 }
 
+bool within_2sigma_ellipse(const Pose2& estimate, const Eigen::Matrix3d& covariance,
+                           const Pose2& truth) {
+  const Eigen::Matrix2d xy = covariance.topLeftCorner<2, 2>();
+  if (!xy.allFinite()) return false;
+  const Eigen::LLT<Eigen::Matrix2d> factor(xy);
+  if (factor.info() != Eigen::Success) return false;  // not positive definite
+  const Eigen::Vector2d error(estimate.x - truth.x, estimate.y - truth.y);
+  return error.dot(factor.solve(error)) <= 4.0;
+}
+
 bool gross_error(double position_error_m, double heading_error_deg) {
   return position_error_m > 0.3 || heading_error_deg > 15.0;
 }

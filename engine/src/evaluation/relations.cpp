@@ -201,6 +201,7 @@ PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& curre
     const IcpResult icp = icp_or_none(reference_points, current_points, prior, options.icp);
     match.pose = icp.pose;
     match.converged = icp.converged;
+    match.covariance = icp.covariance;
     return match;
   }
   const Estimate coarse =
@@ -208,6 +209,7 @@ PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& curre
   match.pose = coarse.pose;
   match.verdict = coarse.verdict;
   match.confidence = coarse.confidence;
+  match.covariance = coarse.covariance;
   if (options.matcher == EstimatorKind::CorrelationIcp) {
     const auto refined = refine_by_icp(reference_points, current_points, coarse.pose, options);
     match.refined = refined.has_value();
@@ -265,8 +267,11 @@ RelationTrial run_trial(const CarmenLog& log, const RelationPair& pair, std::siz
   trial.motion_deg = rad2deg(std::abs(normalize_angle(pair.relation.motion.theta)));
   const auto current_points = scan_returns(second.scan);
   trial.returns = static_cast<int>(current_points.size());
-  trial.overlap = scan_overlap(scan_returns(first.scan), current_points, pair.relation.motion,
+  const auto reference_points = scan_returns(first.scan);
+  trial.overlap = scan_overlap(reference_points, current_points, pair.relation.motion,
                                options.overlap_radius_m);
+  trial.answer_overlap =
+      scan_overlap(reference_points, current_points, match.pose, options.overlap_radius_m);
   // The benchmark's error: the estimate seen from the true motion.
   const Pose2 error = relative_pose(pair.relation.motion, match.pose);
   trial.translation_error_m = std::hypot(error.x, error.y);
@@ -278,6 +283,10 @@ RelationTrial run_trial(const CarmenLog& log, const RelationPair& pair, std::siz
   trial.confidence = match.confidence;
   trial.refined = match.refined;
   trial.search_cells = match.search_cells;
+  trial.truth = pair.relation.motion;
+  trial.answer = match.pose;
+  trial.covariance = match.covariance;
+  trial.within_2sigma = within_2sigma_ellipse(match.pose, match.covariance, pair.relation.motion);
   return trial;
 }
 
@@ -310,6 +319,13 @@ void tabulate_failures(RelationEvalReport& report, const RelationEvalOptions& op
     }
     if (row.pairs > 0) report.failures_by_verdict.push_back(row);
   }
+  std::vector<CalibrationSample> samples;
+  for (const RelationTrial& t : report.trials) {
+    const bool used = t.verdict ? *t.verdict == Verdict::Localized : t.converged;
+    samples.push_back({t.answer, t.covariance, t.truth, used});
+    if (used && t.failed && t.within_2sigma) ++report.covered_failures;
+  }
+  report.calibration = summarize_calibration(samples);
 }
 
 /// The report's totals from its trials.

@@ -20,6 +20,14 @@ double pose_nees(const Pose2& estimate, const Eigen::Matrix3d& covariance, const
 bool within_2sigma_radius(const Pose2& estimate, const Eigen::Matrix3d& covariance,
                           const Pose2& truth);
 
+/// Whether the position error lies within the covariance's 2-sigma ellipse (its squared
+/// Mahalanobis distance over x, y at most 4: about 86 % of a calibrated 2-D Gaussian's
+/// errors do). A corridor's covariance, long along it, covers an error along it that the
+/// radius of within_2sigma_radius would not. False for an xy block that is not finite and
+/// positive definite.
+bool within_2sigma_ellipse(const Pose2& estimate, const Eigen::Matrix3d& covariance,
+                           const Pose2& truth);
+
 /// An error a navigation stack must never be handed as `localized`: more than 0.3 m or 15
 /// degrees.
 bool gross_error(double position_error_m, double heading_error_deg);

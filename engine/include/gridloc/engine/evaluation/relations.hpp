@@ -11,6 +11,7 @@
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/engine/estimator.hpp"
+#include "gridloc/engine/evaluation/calibration.hpp"
 #include "gridloc/engine/evaluation/scan_overlap.hpp"
 #include "gridloc/engine/icp/robust_icp.hpp"
 #include "gridloc/sensors/carmen_log.hpp"
@@ -93,6 +94,9 @@ struct PairMatch {
   /// Correlation + ICP: ICP's pose was kept (false: the search's).
   bool refined = false;
   std::size_t search_cells = 0;  ///< the padded search grid's cells (0 for Icp)
+  /// The answer's covariance in the reference scan's frame: the search's (Correlation and
+  /// CorrelationIcp), ICP's Gauss-Newton one (Icp).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 /// One relation pair of evaluate_relations().
@@ -102,6 +106,8 @@ struct RelationTrial {
   double motion_m = 0.0;      ///< the relation's translation (m) ...
   double motion_deg = 0.0;    ///< ... and |rotation| (deg)
   int returns = 0;            ///< returns of the current scan (at t2)
+  Pose2 truth;                ///< the relation's motion (the current scan in the reference's frame)
+  Pose2 answer;               ///< the matcher's (PairMatch::pose)
   double translation_error_m = 0.0;
   double rotation_error_deg = 0.0;
   double ms = 0.0;  ///< the match's time, the reference map's construction included
@@ -112,6 +118,13 @@ struct RelationTrial {
   bool refined = false;          ///< PairMatch::refined
   std::size_t search_cells = 0;  ///< PairMatch::search_cells
   double overlap = 0.0;          ///< scan_overlap at the relation's motion
+  /// scan_overlap at the answer: far above `overlap` on a failure, the scans fit the answer
+  /// better than the relation (a relation off, or a place that repeats).
+  double answer_overlap = 0.0;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< PairMatch::covariance
+  /// The position error lies within the covariance's 2-sigma ellipse
+  /// (within_2sigma_ellipse): along a corridor an answer may slide as far as it says.
+  bool within_2sigma = false;
 };
 
 struct RelationEvalReport {
@@ -129,6 +142,12 @@ struct RelationEvalReport {
   std::vector<FailureRow> failures_by_verdict;
   /// ...and over the pairs overlapping at least RelationEvalOptions::overlapping_share.
   FailureRow overlapping;
+  /// The calibration of the answers a consumer would use: `localized` ones of the search,
+  /// converged ones of ICP alone (CalibrationSummary::localized counts them).
+  CalibrationSummary calibration;
+  /// Of the failures among them, those whose error the 2-sigma ellipse covers: a corridor's
+  /// answer that says how far it may slide.
+  int covered_failures = 0;
 };
 
 /// The motion of `current` in `reference`'s frame by `options.matcher`, from `prior`.
