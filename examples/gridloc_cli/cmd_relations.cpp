@@ -27,7 +27,11 @@ struct RelationsArgs {
   RelationEvalOptions options;
   SearchArgs search = [] {
     SearchArgs s;
-    s.strategy = "exhaustive";  // RelationEvalOptions' default (exhaustive_search())
+    // RelationEvalOptions' default (exhaustive_search())
+    const CorrelationOptions defaults = exhaustive_search();
+    s.strategy = "exhaustive";
+    s.covariance_cells = defaults.covariance_cells;
+    s.covariance_temperature = defaults.covariance_temperature;
     return s;
   }();
   bool json = false;

@@ -145,6 +145,9 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "covariance from the poses within this many cells and heading steps of the "
                   "winner (0 = none)")
       ->capture_default_str();
+  cmd->add_option("--covariance-temperature", covariance_temperature,
+                  "the covariance weighs each pose by exp((score - best) / this)")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -185,6 +188,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
     throw Error("--covariance-cells must lie in [0, 20], got " + std::to_string(covariance_cells));
   }
   options.covariance_cells = covariance_cells;
+  options.covariance_temperature = covariance_temperature;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

@@ -41,6 +41,7 @@ struct SearchArgs {
   double second_peak_floor = CorrelationOptions{}.second_peak_floor;
   int hypotheses = CorrelationOptions{}.hypotheses;
   int covariance_cells = CorrelationOptions{}.covariance_cells;
+  double covariance_temperature = CorrelationOptions{}.covariance_temperature;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and

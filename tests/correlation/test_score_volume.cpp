@@ -90,6 +90,28 @@ TEST(PeakCovariance, LargerAlongACorridorThanAcrossIt) {
   }
 }
 
+TEST(PeakCovariance, ATemperatureAboveOneCountsTheNeighboursBelowTheBest) {
+  const OccupancyMap map = corridor();
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Observation obs{simulate_sonar(map, ring, {6.0, 1.04, 0.0})};
+  SearchWindow w;
+  w.center = {6.1, 1.05, 0.05};
+  CorrelationOptions cold, hot;
+  hot.covariance_temperature = 10.0;
+  const Estimate a = CorrelationEstimator(map, ring, cold).estimate(obs, w);
+  const Estimate b = CorrelationEstimator(map, ring, hot).estimate(obs, w);
+  EXPECT_EQ(a.pose.x, b.pose.x);  // the same winner: only the covariance changes
+  // Along the corridor every pose within covariance_cells scores alike, whatever the
+  // temperature; across it and in heading the neighbours below the best now count.
+  EXPECT_NEAR(b.covariance(0, 0), a.covariance(0, 0), 1e-12);
+  EXPECT_GT(b.covariance(1, 1), 1.5 * a.covariance(1, 1)) << a.covariance << "\n" << b.covariance;
+  EXPECT_GT(b.covariance(2, 2), 1.5 * a.covariance(2, 2)) << a.covariance << "\n" << b.covariance;
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    hot.covariance_temperature = bad;
+    test::expect_error([&] { CorrelationEstimator(map, ring, hot); }, {"covariance_temperature"});
+  }
+}
+
 TEST(PeakCovariance, OffMeansZero) {
   const OccupancyMap map = load_ros_map(test::map_path("room_l"));
   const SonarRing ring = load_sonar_ring(test::ring_path());

@@ -2,11 +2,13 @@
 // (engine/src/evaluation/relations.cpp, issue 13), on a synthetic log of exact relations.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <vector>
 
+#include "gridloc/engine/evaluation/calibration.hpp"
 #include "gridloc/engine/evaluation/relations.hpp"
 #include "gridloc/sensors/segment_world.hpp"
 #include "test_support.hpp"
@@ -110,6 +112,38 @@ TEST_F(RelationTrials, TablesCountEveryPairByOverlapAndVerdict) {
   EXPECT_EQ(i.failures_by_verdict[0].label, "none");
   EXPECT_EQ(i.failures_by_verdict[0].pairs, 3);
   EXPECT_LT(i.overlapping.pairs, 3);
+}
+
+/// A straight corridor 2 m wide, longer than the laser reaches: nothing along it to pin a
+/// scan.
+std::vector<WallSegment> corridor() {
+  return {{{-40, -1}, {40, -1}}, {{-40, 1}, {40, 1}}};
+}
+
+TEST(RelationCorridor, AnAnswerSlidAlongTheCorridorSaysSo) {
+  // Two scans 0.5 m apart along the corridor; the prior off by 0.25 m along it. Any pose
+  // along the corridor fits as well: the answer is either not `localized` or its 2-sigma
+  // ellipse covers its error, and the ellipse lies along the corridor.
+  const Pose2 first{0.0, 0.1, 0.0}, second{0.5, 0.1, 0.05};
+  const auto scan_at = [](const Pose2& pose) {
+    return simulate_segment_scan(corridor(), pose, 181, -0.5 * std::numbers::pi,
+                                 std::numbers::pi / 180.0, 20.0);
+  };
+  const Pose2 truth = relative_pose(first, second);
+  RelationEvalOptions options;
+  options.matcher = EstimatorKind::Correlation;
+  for (double slide : {-0.25, 0.25}) {
+    const Pose2 prior{truth.x + slide, truth.y + 0.03, truth.theta - 0.02};
+    const PairMatch m = match_relation_pair(scan_at(first), scan_at(second), prior, options);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(m.covariance.topLeftCorner<2, 2>());
+    const Eigen::Vector2d along = axes.eigenvectors().col(1);  // the major axis
+    const double sigma_along = std::sqrt(axes.eigenvalues()(1));
+    const Eigen::Vector2d error(m.pose.x - truth.x, m.pose.y - truth.y);
+    EXPECT_GT(std::abs(along.x()), 0.99) << slide;  // the ellipse lies along the corridor
+    EXPECT_TRUE(m.verdict != Verdict::Localized || std::abs(error.dot(along)) <= 2 * sigma_along)
+        << "slide " << slide << ": " << error.x() << " m off along, sigma " << sigma_along;
+    EXPECT_LT(std::abs(error.y()), 0.05) << slide;  // across: pinned to a cell
+  }
 }
 
 TEST_F(RelationTrials, IcpFromThePriorTooKeepsExactRelations) {

@@ -40,6 +40,10 @@ void check(const CorrelationOptions& options) {
     throw Error("correlation options: covariance_cells must be in [0, 20], got " +
                 std::to_string(options.covariance_cells));
   }
+  if (!(options.covariance_temperature > 0.0) || !std::isfinite(options.covariance_temperature)) {
+    throw Error("correlation options: covariance_temperature must be finite and > 0, got " +
+                std::to_string(options.covariance_temperature));
+  }
   validate(options.scan);
   options.field.validate();
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws

@@ -57,7 +57,7 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
 Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
                                 const PaddedGrid& global,
                                 const std::function<PlacedLocalGrid(int)>& placed_at, int k,
-                                double yaw) {
+                                double yaw, double temperature) {
   const double res = global.grid.geometry.resolution;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
@@ -73,7 +73,8 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
          ++iy) {
       for (int ix = std::max(lattice.x0, best.ix - k); ix <= std::min(lattice.x1, best.ix + k);
            ++ix) {
-        const double w = std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score));
+        const double w =
+            std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score) / temperature);
         // Offsets from the winner: metres, metres, radians.
         const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
                                 (t - best.it) * lattice.step_theta);

@@ -28,7 +28,7 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
 Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
                                 const PaddedGrid& global,
                                 const std::function<PlacedLocalGrid(int)>& placed_at, int k,
-                                double yaw);
+                                double yaw, double temperature = 1.0);
 
 /// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`.
 void judge(Estimate& e, bool searched_second, const VerdictOptions& v);

@@ -247,13 +247,14 @@ Peaks this_many_hypotheses(WindowSearch& search, const CorrelationOptions& optio
 }
 
 /// peak_covariance() of the winner within `cells`, reusing branch and bound's heading grids.
-Eigen::Matrix3d winner_covariance(const WindowSearch& search, int cells, double yaw) {
+Eigen::Matrix3d winner_covariance(const WindowSearch& search, int cells, double yaw,
+                                  double temperature) {
   std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
     return search.grids ? search.grids->placed(it)
                         : place_heading(search.finest(), search.lattice.theta(it));
   };
   return peak_covariance(search.result.best, search.lattice, *search.finest().global, placed_at,
-                         cells, yaw);
+                         cells, yaw, temperature);
 }
 
 /// Estimate::stats of the searches, timed since `start`.
@@ -364,7 +365,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
         {lattice_to_world(map_.geometry, lattice, options_.resolution, p.ix, p.iy, p.it), p.score});
   }
   if (options_.covariance_cells > 0) {
-    e.covariance = winner_covariance(search, options_.covariance_cells, map_.geometry.yaw);
+    e.covariance = winner_covariance(search, options_.covariance_cells, map_.geometry.yaw,
+                                     options_.covariance_temperature);
   }
   judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
   fill_stats(e, search.result, level_count, start);

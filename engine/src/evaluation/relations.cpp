@@ -146,6 +146,8 @@ Error in_pair(const Error& e, std::size_t index, const RelationPair& pair) {
 CorrelationOptions exhaustive_search() {
   CorrelationOptions options;
   options.strategy = SearchStrategy::Exhaustive;
+  options.covariance_cells = 5;
+  options.covariance_temperature = 10.0;
   return options;
 }
 

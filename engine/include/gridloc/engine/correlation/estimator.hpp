@@ -79,6 +79,11 @@ struct CorrelationOptions {
   /// Estimate::covariance from the poses within covariance_cells cells and as many heading
   /// steps of the lattice winner (at most (2k+1)^3 extra scores; 0 turns it off).
   int covariance_cells = 3;
+  /// ...each weighted by exp((score - best) / covariance_temperature): above 1 a score a few
+  /// hits below the best still counts, as it must where the scores' points are not
+  /// independent (a laser scan's neighbouring returns on one wall; issue 30: on one-scan maps
+  /// the ridge of a corridor then shows in the covariance).
+  double covariance_temperature = 1.0;
   VerdictOptions verdict;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct

@@ -20,7 +20,12 @@
 namespace gridloc {
 
 /// The correlation options of the relations protocol: CorrelationOptions with the exhaustive
-/// strategy.
+/// strategy, and a covariance from the poses within 5 cells and heading steps of the winner
+/// weighted at temperature 10 (CorrelationOptions::covariance_temperature). On one-scan maps a
+/// corridor's ridge then shows: over Intel's 106 pairs (5 seeds) and freiburg-079's 1141 (2
+/// seeds), correlation + ICP, the 2-sigma ellipse covers 95 % and 94 % of the `localized`
+/// answers (87 % and 58 % with 3 cells at temperature 1) and 2 fr079 answers fail while
+/// `localized`, against 9 (issue 30).
 CorrelationOptions exhaustive_search();
 
 struct RelationEvalOptions {
