@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -12,16 +13,20 @@
 
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/relations.hpp"
+#include "gridloc/engine/icp/robust_icp.hpp"
 #include "gridloc/grids/error.hpp"
+#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "relations_render.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
 
 struct RelationsArgs {
-  std::string log, relations, estimator = "icp", trials_out;
+  std::string log, relations, estimator = "icp", trials_out, plot;
+  int plot_pairs = 6;
   double time_offset = 0.0;
   double tolerance = 0.002;
   RelationEvalOptions options;
@@ -95,6 +100,25 @@ void print_rows(const char* title, const std::vector<FailureRow>& rows) {
   }
 }
 
+/// The worst `args.plot_pairs` pairs drawn into args.plot.
+void write_plot(const RelationsArgs& args, const CarmenLog& log,
+                const std::vector<RelationPair>& pairs, const RelationEvalReport& report) {
+  RelationsPicture picture;
+  for (std::size_t k : worst_trials(report.trials, static_cast<std::size_t>(args.plot_pairs))) {
+    const RelationTrial& t = report.trials[k];
+    picture.panels.push_back({scan_returns(log.lasers[pairs[t.pair].first].scan),
+                              scan_returns(log.lasers[pairs[t.pair].second].scan), t});
+  }
+  picture.title = "gridloc relations: the worst " + std::to_string(picture.panels.size()) + " of " +
+                  std::to_string(report.pairs) + " pairs (" + args.estimator + ")";
+  picture.caption = std::filesystem::path(args.log).filename().string() + ", " +
+                    std::to_string(report.failures) + " failures (beyond " +
+                    plot::fixed(args.options.failure_xy, 2) + " m or " +
+                    plot::fixed(args.options.failure_theta * 180.0 / std::numbers::pi, 0) +
+                    " deg); each panel in the reference scan's frame";
+  plot::write_png(args.plot, render_relations(picture));
+}
+
 void run(const RelationsArgs& args) {
   RelationEvalOptions options = args.options;
   options.matcher = parse_estimator_kind(args.estimator);
@@ -106,6 +130,12 @@ void run(const RelationsArgs& args) {
     trials.open(args.trials_out);
     if (!trials) throw Error("--trials-out: cannot write " + args.trials_out);
   }
+  if (!args.plot.empty() && !std::ofstream(args.plot)) {
+    throw Error("--plot: cannot write " + args.plot);
+  }
+  if (args.plot_pairs < 1) {
+    throw Error("--plot-pairs must be at least 1, got " + std::to_string(args.plot_pairs));
+  }
   CarmenOptions carmen;
   carmen.limits = limits();
   const CarmenLog log = load_carmen_log(input_path(args.log, "--log"), carmen);
@@ -113,6 +143,7 @@ void run(const RelationsArgs& args) {
   const auto pairs = pair_relations(relations, log, args.time_offset, args.tolerance);
   const RelationEvalReport report = evaluate_relations(log, pairs, options);
   if (trials.is_open()) write_trials(trials, args.trials_out, report);
+  if (!args.plot.empty()) write_plot(args, log, pairs, report);
   const nlohmann::json out = {
       {"estimator", args.estimator},
       {"relations", relations.size()},
@@ -253,6 +284,10 @@ void add_relations(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--trials-out", args->trials_out,
                   "write each pair's error, time and verdict to this CSV file");
+  cmd->add_option("--plot", args->plot,
+                  "draw the worst pairs (failures first) into this PNG: the reference scan, the "
+                  "current one at the relation and at the answer, the 2-sigma ellipse");
+  cmd->add_option("--plot-pairs", args->plot_pairs, "pairs --plot draws")->capture_default_str();
   cmd->add_flag("--json", args->json, "print JSON");
   read_stdin_at_most_once(cmd, {{"--log"}, {"--relations"}});
   cmd->callback([args] { run(*args); });

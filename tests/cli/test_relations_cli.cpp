@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -140,6 +141,30 @@ TEST_F(RelationsCli, TrialsOutHasEveryPairWithItsVerdict) {
   EXPECT_EQ(j.at("overlapping").at("min_overlap").get<double>(), 0.5);
   EXPECT_EQ(j.at("calibration").at("answers").get<int>(),
             j.at("failures_by_verdict")[0].at("pairs").get<int>());
+}
+
+TEST_F(RelationsCli, PlotDrawsTheWorstPairs) {
+  const std::string png = dir.file("worst.png");
+  const CliRun r =
+      relations_run("--estimator correlation --plot " + quote(png) + " --plot-pairs 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const cv::Mat img = cv::imread(png, cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(img.cols, 3 * 440);  // one row of three panels, two drawn
+  // The current scan at the relation (green) and at the answer (red) are drawn.
+  int green = 0, red = 0;
+  for (int y = 0; y < img.rows; ++y) {
+    for (int x = 0; x < img.cols; ++x) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(y, x);
+      green += p[1] > 120 && p[0] < 100 && p[2] < 100;
+      red += p[2] > 160 && p[0] < 100 && p[1] < 100;
+    }
+  }
+  EXPECT_GT(green, 50);
+  EXPECT_GT(red, 50);
+  expect_cli_error(relations_run("--plot " + quote(dir.file("no/such/dir/x.png"))),
+                   {"--plot", "cannot write"});
+  expect_cli_error(relations_run("--plot " + quote(png) + " --plot-pairs 0"), {"--plot-pairs"});
 }
 
 TEST_F(RelationsCli, BadOverlapOptionsAreOneLine) {
