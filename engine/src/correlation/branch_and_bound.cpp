@@ -16,6 +16,7 @@
 #include <tuple>
 
 #include "gridloc/grids/error.hpp"
+#include "interval_bound.hpp"
 
 // Exactness rests on IEEE rounding being monotone and on the bound being summed exactly as
 // score() sums (see block_bound); reassociating compilers would break both.
@@ -25,6 +26,8 @@
 
 namespace gridloc {
 namespace {
+
+using correlation_detail::IntervalBound;
 
 bool index_less(int it, int iy, int ix, const LatticePose& b) {
   return std::tie(it, iy, ix) < std::tie(b.it, b.iy, b.ix);
@@ -72,30 +75,8 @@ class Search {
         pyramid_(pyramid),
         options_(options),
         global_(*grids.level().global) {
-    points_ = options.heading_intervals ? grids.points() : nullptr;
-    inv_res_ = 1.0 / global_.grid.geometry.resolution;
-    width_ = global_.grid.width();
-    // Level 0 as floats: none when the grid keeps int8 cells alone. interval_sum never reads
-    // it (a heading interval widens its block: level >= 2), block_bound starts at level 1.
-    arc_levels_.push_back(global_.has_floats() ? global_.arc_view().data() : nullptr);
-    min_levels_.push_back(global_.has_floats() ? global_.grid.cells.data() : nullptr);
-    for (int h = 1; h <= pyramid_.depth(); ++h) {
-      arc_levels_.push_back(pyramid_.arc_max[static_cast<std::size_t>(h)].cells.data());
-      min_levels_.push_back(pyramid_.grid_min[pyramid_.min_level(h)].cells.data());
-    }
-    if (pyramid_.has_int8()) {  // level 0 is the padded grid's own int8 copy
-      arc8_levels_.push_back(global_.arc_view8().data());
-      min8_levels_.push_back(global_.grid8.data());
-    }
-    for (std::size_t h = 1; h < pyramid_.arc_max8.size(); ++h) {
-      arc8_levels_.push_back(pyramid_.arc_max8[h].data());
-      min8_levels_.push_back(pyramid_.grid_min8[pyramid_.min_level(static_cast<int>(h))].data());
-    }
-    if (points_ != nullptr) {
-      double mass = 0.0;
-      for (float w : points_->weight) mass += std::abs(static_cast<double>(w));
-      slack_ = (static_cast<double>(points_->size()) + 4.0) * std::ldexp(1.0, -24) * mass *
-               std::max(1.0f, pyramid_.abs_max);
+    if (options.heading_intervals && grids.points() != nullptr) {
+      intervals_.emplace(lattice, grids, pyramid);
     }
     if (options_.incumbent) {
       best_ = *options_.incumbent;
@@ -114,7 +95,7 @@ class Search {
   SearchResult run() {
     const int top = std::min(pyramid_.depth(), bound_depth_for(lattice_));
     depth_first_level_ = std::min(kDepthFirstLevel, top - kBestFirstLevels);
-    if (top == 0 && points_ == nullptr) return run_exhaustive();  // no bound levels
+    if (top == 0 && !intervals_) return run_exhaustive();  // no bound levels
     const int top_headings = top_heading_level(top);
     // Each thread makes the top nodes of its share of the headings (building their grids in
     // parallel) into its own best-first heap, then searches, sharing the incumbent and
@@ -208,8 +189,8 @@ class Search {
         node.bound = block_bound(search.pyramid_, local, block_level, x, y);
         cells += static_cast<long long>(local.value.size());
       } else {
-        node.bound = search.interval_bound(node, last_heading);
-        cells += static_cast<long long>(search.points_->size());
+        node.bound = search.intervals_->bound(heading, last_heading, x, y, block_level);
+        cells += static_cast<long long>(search.intervals_->point_count());
       }
       if (search.promising_fast(node)) children.push_back(node);
     }
@@ -220,7 +201,8 @@ class Search {
       const Lattice& lattice = search.lattice_;
       if (node.heading_level > 0 &&
           (node.block_level == 0 ||
-           2 * search.widening(search.points_->max_norm, search.half_span(node.heading_level)) >=
+           2 * search.intervals_->widening(search.intervals_->max_norm(),
+                                           IntervalBound::half_span(node.heading_level)) >=
                (1 << node.block_level))) {
         const int half = 1 << (node.heading_level - 1);
         add_child(node.heading, node.heading_level - 1, node.y, node.x, node.block_level);
@@ -266,9 +248,11 @@ class Search {
   /// widening stays within half a top block; 0 (one heading per node) otherwise.
   int top_heading_level(int top) const {
     int level = 0;
-    if (points_ != nullptr && options_.heading_intervals) {
-      while ((1 << level) < lattice_.headings &&
-             2 * widening(points_->max_norm, half_span(level + 1)) <= (1 << top)) {
+    if (intervals_) {
+      while (
+          (1 << level) < lattice_.headings &&
+          2 * intervals_->widening(intervals_->max_norm(), IntervalBound::half_span(level + 1)) <=
+              (1 << top)) {
         ++level;
       }
     }
@@ -298,74 +282,6 @@ class Search {
       if (!error_) error_ = std::current_exception();
       stopped_ = true;
     }
-  }
-
-  /// Half the angle an interval of 2^a headings spans around its middle heading, in steps.
-  static int half_span(int a) { return a == 0 ? 0 : 1 << (a - 1); }
-  /// Cells a point at `norm` (m) can move when the heading turns by up to `steps` steps.
-  int widening(double norm, int steps) const {
-    if (steps == 0) return 0;
-    return static_cast<int>(norm * steps * std::abs(lattice_.step_theta) * inv_res_ + 1e-6) + 1;
-  }
-
-  /// Upper bound of every pose of the node (headings [node.heading, last_heading]) from its
-  /// rigid points.
-  double interval_bound(const Node& node, int last_heading) const {
-    const int ref = (node.heading + last_heading) / 2;
-    const int widen = widening(points_->max_norm, std::max(ref - node.heading, last_heading - ref));
-    const auto& cells = grids_.point_cells(ref);
-    const double scale = pyramid_.int8_scale;  // int8 levels hold values times it
-    const double sums =
-        pyramid_.float_levels
-            ? interval_sum(arc_levels_, min_levels_, node, widen, cells, 1.0)
-            : interval_sum(arc8_levels_, min8_levels_, node, widen, cells, scale) / scale;
-    return sums + slack_;
-  }
-
-  /// The heading-interval bound's sums (see interval_bound), over grids of T holding values
-  /// times `scale`: every point's cell widened by `widen` cells on every side.
-  template <typename T>
-  double interval_sum(const std::vector<const T*>& arc, const std::vector<const T*>& min,
-                      const Node& node, int widen, const HeadingGrids::PointCells& cells,
-                      double scale) const {
-    const int level =
-        std::bit_width(static_cast<unsigned>((1 << node.block_level) + 2 * widen - 1));
-    const double free_weight =
-        points_->size() > points_->hit_count ? points_->weight[points_->hit_count] : 0.0;
-    double positive = 0.0, negative = 0.0;
-    if (level > pyramid_.depth()) {  // wider than any level: the whole grid's extremes
-      positive = static_cast<double>(cells.hit_offset.size()) *
-                 std::max(pyramid_.arc_max_all, 0.0f) * scale;
-      negative = static_cast<double>(cells.free_offset.size()) *
-                 std::min(pyramid_.grid_min_all, 0.0f) * scale;
-      return positive + free_weight * negative;
-    }
-    // Pooled cells cover [x, x + 2^level): read `widen` cells before the block.
-    const T* arc_level = arc[static_cast<std::size_t>(level)];
-    const T* min_level = min[static_cast<std::size_t>(level)];
-    const int bx = node.x + global_.pad - widen, by = node.y + global_.pad - widen;
-    if (node.x >= widen && node.y >= widen) {  // every read inside the padded grid: flat offsets
-      const std::ptrdiff_t base = static_cast<std::ptrdiff_t>(by) * width_ + bx;
-      for (std::ptrdiff_t o : cells.hit_offset) {
-        positive += std::max(static_cast<float>(arc_level[base + o]), 0.0f);
-      }
-      for (std::ptrdiff_t o : cells.free_offset) {
-        negative += std::min(static_cast<float>(min_level[base + o]), 0.0f);
-      }
-    } else {  // near the map's edge: a read before the padded grid starts at its edge
-      auto at = [&](int x, int y) {  // (dropping cells that do not exist)
-        return static_cast<std::ptrdiff_t>(std::max(0, by + y)) * width_ + std::max(0, bx + x);
-      };
-      for (std::size_t k = 0; k < cells.hit_x.size(); ++k) {
-        positive +=
-            std::max(static_cast<float>(arc_level[at(cells.hit_x[k], cells.hit_y[k])]), 0.0f);
-      }
-      for (std::size_t k = 0; k < cells.free_x.size(); ++k) {
-        negative +=
-            std::min(static_cast<float>(min_level[at(cells.free_x[k], cells.free_y[k])]), 0.0f);
-      }
-    }
-    return positive + free_weight * negative;
   }
 
   /// Should the node be expanded: could it hold a pose better than the incumbent, or one
@@ -526,13 +442,9 @@ class Search {
   const BoundPyramid& pyramid_;
   const BranchAndBoundOptions& options_;
   const PaddedGrid& global_;  ///< the searched level's padded grid
-  const ScanPoints* points_ = nullptr;
-  double inv_res_ = 1.0;
-  std::ptrdiff_t width_ = 0;
-  double slack_ = 0.0;
+  /// The bounds of nodes of several headings (BranchAndBoundOptions::heading_intervals).
+  std::optional<IntervalBound> intervals_;
   int depth_first_level_ = kDepthFirstLevel;  ///< blocks at or below it: depth first
-  std::vector<const float*> arc_levels_, min_levels_;
-  std::vector<const std::int8_t*> arc8_levels_, min8_levels_;
   std::optional<std::chrono::steady_clock::time_point> deadline_;
 
   std::vector<std::vector<Node>> heaps_;                 ///< one best-first heap per thread ...
