@@ -205,7 +205,7 @@ static OccupancyMap map_of(const MapMetadata& meta, const std::string& yaml_path
     const std::uint8_t* px = img.row(r);
     const int iy = img.height - 1 - r;  // image row 0 is the top: flip so iy grows with y
     for (int c = 0; c < img.width; ++c) {
-      const std::uint8_t* p = px + c * channels;
+      const std::uint8_t* p = px + static_cast<std::ptrdiff_t>(c) * channels;
       int sum = 0;
       for (int k = 0; k < colour_channels; ++k) sum += p[k];
       double v = static_cast<double>(sum) / colour_channels;

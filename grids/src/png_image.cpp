@@ -433,7 +433,9 @@ PngHeader read_png_header(const std::string& bytes, const std::string& path) {
   h.height = be32(bytes, at + 4);
   h.bit_depth = static_cast<std::uint8_t>(bytes[at + 8]);
   h.colour_type = static_cast<std::uint8_t>(bytes[at + 9]);
-  const int compression = bytes[at + 10], filter = bytes[at + 11], interlace = bytes[at + 12];
+  const int compression = static_cast<unsigned char>(bytes[at + 10]);
+  const int filter = static_cast<unsigned char>(bytes[at + 11]);
+  const int interlace = static_cast<unsigned char>(bytes[at + 12]);
   h.interlaced = interlace == 1;
   if (!(h.width >= 1.0) || !(h.height >= 1.0) || h.width > 0x7fffffff || h.height > 0x7fffffff) {
     fail(path, "the PNG header declares " + std::to_string(std::int64_t(h.width)) + " x " +

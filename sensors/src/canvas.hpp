@@ -124,7 +124,8 @@ class Canvas {
                   std::to_string(centre.y()) + ")");
     }
     const double half = std::ceil(reach_cells) + margin;
-    if (!(half <= (kMaxSide - 1) / 2)) {  // NaN fails too
+    constexpr int kMaxHalfSide = (kMaxSide - 1) / 2;  // exact: kMaxSide is odd
+    if (!(half <= kMaxHalfSide)) {                    // NaN fails too
       throw Error("local grid reaching " + std::to_string(reach_cells * resolution) +
                   " m at resolution " + std::to_string(resolution) +
                   " m needs a canvas wider than the " + std::to_string(kMaxSide) +

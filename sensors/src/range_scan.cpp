@@ -14,7 +14,7 @@ namespace gridloc {
 namespace {
 
 /// The longest line of a scan CSV: an `angle,range` line with a comment is far shorter.
-constexpr std::size_t kMaxScanLineBytes = 64 * 1024;
+constexpr std::size_t kMaxScanLineBytes = std::size_t{64} * 1024;
 
 /// Cells crossed by the segment from (x0, y0) to (x1, y1), in cell units with cell (i, j)
 /// covering [i - 0.5, i + 0.5) x [j - 0.5, j + 0.5) (the robot centre is a cell centre);

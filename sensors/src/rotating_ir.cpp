@@ -23,7 +23,7 @@ constexpr int kMaxReadings = 100'000;
 /// A return never reads closer to max_range_m than this (m): it stays a return.
 constexpr double kBelowMax = 1e-6;
 /// The longest line of an IR scan CSV.
-constexpr std::size_t kMaxIrLineBytes = 64 * 1024;
+constexpr std::size_t kMaxIrLineBytes = std::size_t{64} * 1024;
 /// The moving average does not cross a jump of more than this between neighbouring readings (m).
 constexpr double kSmoothingJumpM = 0.05;
 

@@ -17,7 +17,8 @@ std::vector<SlamRelation> load_slam_relations(const std::string& path,
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot read the relations file");
   std::vector<SlamRelation> out;
-  constexpr std::size_t kMaxLineBytes = 64 * 1024;  // 8 numbers, and what may follow them
+  constexpr std::size_t kMaxLineBytes =
+      std::size_t{64} * 1024;  // 8 numbers, and what may follow them
   detail::for_each_word_line(
       in, path, kMaxLineBytes, [&](const std::vector<std::string>& tokens, std::size_t line) {
         const std::string where = path + ":" + std::to_string(line);

@@ -45,7 +45,7 @@ double number_or(const YAML::Node& node, const std::string& key, double fallback
 Eigen::Vector2d point(const YAML::Node& node, const std::string& where) {
   if (!node.IsSequence() || node.size() != 2) fail(where, "a point must be a list [x, y]");
   try {
-    const Eigen::Vector2d p(node[0].as<double>(), node[1].as<double>());
+    Eigen::Vector2d p(node[0].as<double>(), node[1].as<double>());
     if (!p.allFinite()) fail(where, "point coordinates must be finite");
     return p;
   } catch (const YAML::Exception&) {

@@ -140,12 +140,10 @@ double reading_agreement(const OccupancyMap& map, const SonarRing& ring,
     ++used;
     const double limit = ring.sonars[i].max_range;
     const bool none = ranges[i] >= limit, none_expected = expected[i] >= limit;
-    if (none && none_expected) {
-      ++agree;
-    } else if (!none && !none_expected &&
-               std::abs(ranges[i] - expected[i]) <= 0.10 + 0.05 * expected[i]) {
-      ++agree;
-    }
+    const bool both_none = none && none_expected;
+    const bool both_near =
+        !none && !none_expected && std::abs(ranges[i] - expected[i]) <= 0.10 + 0.05 * expected[i];
+    if (both_none || both_near) ++agree;
   }
   return used == 0 ? 0.0 : static_cast<double>(agree) / static_cast<double>(used);
 }

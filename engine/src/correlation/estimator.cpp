@@ -377,6 +377,7 @@ std::vector<SearchLevel> CorrelationEstimator::search_levels(const Observation& 
                                                              const ScanPoints* points,
                                                              int count) const {
   std::vector<SearchLevel> levels;
+  levels.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int l = 0; l < count; ++l) {
     levels.push_back(
         {&levels_[static_cast<std::size_t>(l)],

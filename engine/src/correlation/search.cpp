@@ -377,7 +377,8 @@ RefinedPose refine(const LatticePose& best, const Lattice& lattice, const Search
     placed.push_back(built ? *built : place_heading(finest, heading(j)));
   }
   auto placed_at = [&](int j) -> const PlacedLocalGrid& {
-    return placed[static_cast<std::size_t>(j + sub)];
+    const int index = j + sub;
+    return placed[static_cast<std::size_t>(index)];
   };
   int bj = 0, bx = best.ix, by = best.iy;
   double top = best.score;

@@ -51,11 +51,8 @@ bool same_view(const RangeScan& a, const RangeScan& b, const ScanEquivalence& op
   int differing = 0;
   for (std::size_t k = 0; k < a.ranges.size(); ++k) {
     const bool return_a = a.ranges[k] < a.max_range, return_b = b.ranges[k] < b.max_range;
-    if (return_a != return_b) {
-      ++differing;
-    } else if (return_a && std::abs(a.ranges[k] - b.ranges[k]) > options.tolerance_m) {
-      ++differing;
-    }
+    const bool apart = return_a && std::abs(a.ranges[k] - b.ranges[k]) > options.tolerance_m;
+    if (return_a != return_b || apart) ++differing;
   }
   return differing < options.share * static_cast<double>(a.ranges.size());
 }

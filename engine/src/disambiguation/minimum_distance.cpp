@@ -39,6 +39,7 @@ struct StopContext {
 
 std::vector<Pose2> poses_of(const std::vector<Pose2>& hypotheses, const std::vector<int>& active) {
   std::vector<Pose2> poses;
+  poses.reserve(active.size());
   for (const int index : active) poses.push_back(hypotheses[static_cast<std::size_t>(index)]);
   return poses;
 }

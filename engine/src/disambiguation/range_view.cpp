@@ -296,7 +296,7 @@ std::vector<EdgeRun> visible_runs(const std::vector<SweepEdge>& edges,
 
 /// The point at parameter t of the edge, snapped to an end within kVertexTolerance.
 Eigen::Vector2d run_point(const SweepEdge& edge, double t, bool& is_vertex) {
-  const Eigen::Vector2d point = edge.start + t * (edge.end - edge.start);
+  Eigen::Vector2d point = edge.start + t * (edge.end - edge.start);
   is_vertex = true;
   if ((point - edge.start).norm() <= kVertexTolerance) return edge.start;
   if ((point - edge.end).norm() <= kVertexTolerance) return edge.end;

@@ -34,8 +34,8 @@ std::size_t area_at_share(const std::vector<double>& cumulative, double u) {
 
 Eigen::Vector2d point_in(const Area& area, const Box& box, Rng& rng) {
   for (int attempt = 0; attempt < 100000; ++attempt) {
-    const Eigen::Vector2d p(rng.uniform(box.low.x(), box.high.x()),
-                            rng.uniform(box.low.y(), box.high.y()));
+    Eigen::Vector2d p(rng.uniform(box.low.x(), box.high.x()),
+                      rng.uniform(box.low.y(), box.high.y()));
     if (covers(area, p)) return p;
   }
   throw Error("sampling: an area covers almost none of its bounding box");

@@ -48,6 +48,7 @@ std::vector<Estimate> score_predictions(const CorrelationEstimator& estimator,
     throw Error("score elimination: the distance travelled must be >= 0 m");
   }
   std::vector<Estimate> estimates;
+  estimates.reserve(predicted.size());
   for (const Pose2& pose : predicted) {
     estimates.push_back(estimator.estimate(
         observation, prediction_window(estimator, observation, pose, travelled_m, options)));

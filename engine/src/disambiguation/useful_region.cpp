@@ -74,7 +74,7 @@ Eigen::Vector2d inward_normal(const BgPolygon& oi, const PlanarSegment& edge, st
   if (!(direction.norm() > 0.0)) {
     throw Error("useful_region: internal edge " + std::to_string(index) + " has zero length");
   }
-  const Eigen::Vector2d left = Eigen::Vector2d(-direction.y(), direction.x()).normalized();
+  Eigen::Vector2d left = Eigen::Vector2d(-direction.y(), direction.x()).normalized();
   const Eigen::Vector2d middle = 0.5 * (edge.a + edge.b);
   if (bg::within(to_bg(Eigen::Vector2d(middle + kPullInside * left)), oi)) return left;
   if (bg::within(to_bg(Eigen::Vector2d(middle - kPullInside * left)), oi)) return -left;

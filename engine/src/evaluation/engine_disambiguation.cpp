@@ -51,6 +51,7 @@ double mean_of(const std::vector<TrialOutcome>& outcomes,
 
 double median_ms(const std::vector<TrialOutcome>& outcomes) {
   std::vector<double> ms;
+  ms.reserve(outcomes.size());
   for (const TrialOutcome& outcome : outcomes) ms.push_back(outcome.ms);
   if (ms.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::sort(ms.begin(), ms.end());

@@ -132,7 +132,8 @@ class EngineSensing {
   StopReading operator()(const Eigen::Vector2d& stop, const std::vector<Eigen::Vector2d>& route,
                          const std::vector<int>& active) {
     const std::vector<DriveSample> samples = robot_->drive(route, loop_->options().firing_every_m);
-    const Observation observation = observe_leg(*loop_, samples, seed_ + 7919u * ++stops_);
+    const unsigned stop_seed = 7919u * static_cast<unsigned>(++stops_);  // as before: 32-bit
+    const Observation observation = observe_leg(*loop_, samples, seed_ + stop_seed);
     // The hypotheses were refit at the previous stop: odometry error grows from there.
     const std::vector<Estimate> estimates =
         score_predictions(loop_->estimator(), observation, predictions(stop, active),

@@ -106,7 +106,8 @@ void check_match(const json& file, const PolygonMap& map, const SectorOptions& o
   if (file.at("map") != map_json(map)) {
     throw Error("the sectors were computed on another polygon map");
   }
-  const json wanted = options_json(options), saved = file.at("options");
+  const json wanted = options_json(options);
+  const json& saved = file.at("options");
   for (const char* key : {"cell_m", "label_beams", "clearance_m"}) {
     if (saved.at(key) != wanted.at(key)) {
       throw Error(std::string("the sectors were computed with ") + key + " " +

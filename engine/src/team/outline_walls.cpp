@@ -97,14 +97,14 @@ void fit_line(const Polygon& ring, WallPiece& piece) {
 /// Where wall `before` ends and wall `after` starts.
 Eigen::Vector2d join(const Polygon& ring, const WallPiece& before, const WallPiece& after) {
   const std::size_t n = ring.size();
-  const Eigen::Vector2d gap_start = ring[(before.first + before.steps) % n];
-  const Eigen::Vector2d fallback = 0.5 * (gap_start + ring[after.first]);
+  const Eigen::Vector2d& gap_start = ring[(before.first + before.steps) % n];
+  Eigen::Vector2d fallback = 0.5 * (gap_start + ring[after.first]);
   const double denom = cross(before.direction, after.direction);
   if (std::abs(denom) <= 1e-6) return fallback;  // near parallel: a step, no corner
-  const Eigen::Vector2d p =
+  Eigen::Vector2d p =
       line_intersection(before.centre, before.direction, after.centre, after.direction);
-  const Eigen::Vector2d before_start = ring[before.first];
-  const Eigen::Vector2d after_end = ring[(after.first + after.steps) % n];
+  const Eigen::Vector2d& before_start = ring[before.first];
+  const Eigen::Vector2d& after_end = ring[(after.first + after.steps) % n];
   if ((p - before_start).dot(before.direction) <= 0.0 ||
       (after_end - p).dot(after.direction) <= 0.0) {
     return fallback;
@@ -149,7 +149,7 @@ Polygon fit_walls(const Polygon& dense, double tolerance_m, double min_wall_m) {
     walls.push_back(piece);
   }
   while (walls.size() >= 3) {
-    const Polygon vertices = wall_vertices(dense, walls);
+    Polygon vertices = wall_vertices(dense, walls);
     const auto [k, length] = shortest_wall(vertices, walls);
     if (length >= min_wall_m) return vertices;
     walls.erase(walls.begin() + static_cast<std::ptrdiff_t>(k));  // its neighbours meet

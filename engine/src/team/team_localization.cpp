@@ -118,6 +118,7 @@ TeamAnswer localize_team(const std::vector<TeamRobot>& robots,
   const int count = static_cast<int>(robots.size());
   const std::vector<int> tree = choose_links(count, links);
   std::vector<LinkSolutions> chain;
+  chain.reserve(tree.size());
   for (int l : tree) chain.push_back(pair_solutions(links[l], robots, map, options));
   bool truncated = false;
   std::vector<TeamSolution> solutions =
