@@ -130,11 +130,11 @@ void run(const RelationsArgs& args) {
     trials.open(args.trials_out);
     if (!trials) throw Error("--trials-out: cannot write " + args.trials_out);
   }
-  if (!args.plot.empty() && !std::ofstream(args.plot)) {
-    throw Error("--plot: cannot write " + args.plot);
-  }
   if (args.plot_pairs < 1) {
     throw Error("--plot-pairs must be at least 1, got " + std::to_string(args.plot_pairs));
+  }
+  if (!args.plot.empty() && !std::ofstream(args.plot)) {
+    throw Error("--plot: cannot write " + args.plot);
   }
   CarmenOptions carmen;
   carmen.limits = limits();
