@@ -26,10 +26,10 @@ struct FailureRow {
   int failures = 0;
 };
 
-/// The overlap bands between `edges` (ascending, inside (0, 1)): "0.0-e0", "e0-e1", ...,
-/// "eN-1.0", each row counting the `overlaps` in [low, high) (the last includes 1) and the
-/// `failed` among them. Throws gridloc::Error for unsorted or out-of-range edges or sizes
-/// that differ.
+/// The overlap bands between `edges` (ascending, inside (0, 1)): "0-e0", "e0-e1", ...,
+/// "eN-1" (%g: "0-0.2", "0.8-1"), each row counting the `overlaps` in [low, high) (the last
+/// includes 1) and the `failed` among them. Throws gridloc::Error for unsorted or out-of-range
+/// edges or sizes that differ.
 std::vector<FailureRow> failures_by_band(const std::vector<double>& overlaps,
                                          const std::vector<bool>& failed,
                                          const std::vector<double>& edges);
