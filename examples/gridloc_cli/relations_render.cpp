@@ -73,17 +73,20 @@ void two_sigma_ellipse(cv::Mat& img, const View& view, const Pose2& pose,
                        const Eigen::Matrix3d& covariance) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(covariance.topLeftCorner<2, 2>());
   const Eigen::Vector2d sigma = axes.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  if (!(sigma(1) > 0.0)) return;
+  // Nothing to draw for a zero or undefined covariance; an ellipse far wider than the panel
+  // is drawn at 4 panels wide (its pixel size must fit an int).
+  if (!(sigma(1) > 0.0) || !std::isfinite(sigma(1))) return;
+  const auto px = [&](double metres) {
+    return static_cast<int>(std::min(2.0 * metres * view.scale, 4.0 * kPlot) * (1 << plot::kShift));
+  };
   const Eigen::Vector2d major = axes.eigenvectors().col(1);
   const double angle_deg = -std::atan2(major.y(), major.x()) * 180.0 / std::numbers::pi;
   const cv::Point2d centre = view.px(pose.x, pose.y);
-  cv::ellipse(img, plot::sub(centre),
-              cv::Size(static_cast<int>(2.0 * sigma(1) * view.scale * (1 << plot::kShift)),
-                       static_cast<int>(2.0 * sigma(0) * view.scale * (1 << plot::kShift))),
-              angle_deg, 0.0, 360.0, kEllipse, 2, cv::LINE_AA, plot::kShift);
+  cv::ellipse(img, plot::sub(centre), cv::Size(px(sigma(1)), px(sigma(0))), angle_deg, 0.0, 360.0,
+              kEllipse, 2, cv::LINE_AA, plot::kShift);
 }
 
-/// The panel's two text lines: the pair and its errors; its verdict and overlaps.
+/// The panel's text lines: the pair and its errors; its verdict and motion; its overlaps.
 std::vector<std::string> panel_text(const RelationTrial& t) {
   std::string verdict = t.verdict ? to_string(*t.verdict) : "no verdict (icp)";
   if (!std::isnan(t.confidence)) verdict += " (" + plot::fixed(t.confidence, 2) + ")";
