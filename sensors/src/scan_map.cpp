@@ -25,8 +25,7 @@ void check(const ScanMapOptions& options) {
           options.margin_m);
   require(options.join_gap_m >= 0.0 && finite(options.join_gap_m), "join_gap_m must be >= 0",
           options.join_gap_m);
-  require(options.join_grazing_rad >= 0.0 && options.join_grazing_rad < 1.5707963267948966,
-          "join_grazing_rad must lie in [0, pi/2)", options.join_grazing_rad);
+  check_grazing_angle(options.join_grazing_rad, "scan_occupancy_map: join_grazing_rad");
 }
 
 bool is_return(const RangeScan& scan, std::size_t k) {

@@ -53,15 +53,34 @@ TEST(ScanMap, ASlantedWallIsDrawnWholeBetweenItsReturns) {
   EXPECT_EQ(scan_occupancy_map(scan, 0.05).cells, without.cells);
 }
 
-TEST(ScanMap, ADoorwayIsNotJoined) {
-  // A wall 3 m ahead with a 1 m doorway: the beams through it see a wall 6 m ahead.
-  const RangeScan scan =
-      front_scan({{{3.0, -4.0}, {3.0, -0.5}}, {{3.0, 0.5}, {3.0, 4.0}}, {{6.0, -4}, {6.0, 4.0}}});
-  const OccupancyMap map = scan_occupancy_map(scan, ScanMapOptions{});
-  for (double y = -0.3; y <= 0.3; y += 0.05)
-    EXPECT_NE(state(map, 3.0, y), CellState::Occupied) << y;
-  EXPECT_EQ(state(map, 3.02, -1.0), CellState::Occupied);
-  EXPECT_EQ(state(map, 6.02, 0.0), CellState::Occupied);
+TEST(ScanMap, AnOcclusionEdgeIsNotJoined) {
+  // A wall 2 m ahead to the right, another 4 m ahead to the left: the beam straight ahead
+  // ends at (2, 0) on the first, the next one at (4, 0.07) on the second, 2 m apart across
+  // free space, far beyond the breakpoint gap.
+  const RangeScan scan = front_scan({{{2.0, -3.0}, {2.0, 0.02}}, {{4.0, 0.05}, {4.0, 3.0}}});
+  const auto on_the_edge = [](double x) { return 0.07 * (x - 2.0) / 2.0; };
+  ScanMapOptions options;
+  const OccupancyMap map = scan_occupancy_map(scan, options);
+  for (double x = 2.3; x <= 3.7; x += 0.1) {
+    EXPECT_NE(state(map, x, on_the_edge(x)), CellState::Occupied) << x;
+  }
+  EXPECT_EQ(state(map, 2.02, -1.0), CellState::Occupied);
+  EXPECT_EQ(state(map, 4.02, 1.0), CellState::Occupied);
+  // A gap of 3 m joins them: the threshold, not the drawing, keeps them apart.
+  options.join_gap_m = 3.0;
+  const OccupancyMap joined = scan_occupancy_map(scan, options);
+  for (double x = 2.3; x <= 3.7; x += 0.1) {
+    EXPECT_EQ(state(joined, x, on_the_edge(x)), CellState::Occupied) << x;
+  }
+}
+
+TEST(GrazingAngle, OutsideZeroToHalfPiIsNamed) {
+  EXPECT_NO_THROW(check_grazing_angle(0.0, "x"));
+  EXPECT_NO_THROW(check_grazing_angle(1.5, "x"));
+  test::expect_error([] { check_grazing_angle(std::numbers::pi / 2, "IcpOptions.b"); },
+                     {"IcpOptions.b must lie in [0, pi/2), got 1.57"});
+  test::expect_error([] { check_grazing_angle(-0.1, "y"); }, {"y must lie in [0, pi/2)"});
+  test::expect_error([] { check_grazing_angle(std::nan(""), "z"); }, {"z must lie"});
 }
 
 TEST(ScanMap, BadOptionsAreNamed) {

@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <iomanip>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/breakpoints.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/scan_map.hpp"
 
@@ -168,11 +168,7 @@ void validate(const RelationEvalOptions& o) {
   at_least(o.map_resolution, 0.0, true, "map_resolution");
   at_least(o.window_margin_xy, 0.0, false, "window_margin_xy");
   at_least(o.join_gap_m, 0.0, false, "join_gap_m");
-  at_least(o.join_grazing_rad, 0.0, false, "join_grazing_rad");
-  if (o.join_grazing_rad >= 0.5 * std::numbers::pi) {
-    throw Error("relations options: join_grazing_rad must be < pi/2, got " +
-                std::to_string(o.join_grazing_rad));
-  }
+  check_grazing_angle(o.join_grazing_rad, "relations options: join_grazing_rad");
   at_least(o.window_margin_theta, 0.0, false, "window_margin_theta");
   at_least(o.refine_max_shift_m, 0.0, false, "refine_max_shift_m");
   at_least(o.refine_max_turn_rad, 0.0, false, "refine_max_turn_rad");
@@ -183,7 +179,7 @@ void validate(const RelationEvalOptions& o) {
     throw Error("relations options: overlapping_share must be <= 1, got " +
                 std::to_string(o.overlapping_share));
   }
-  failures_by_band({}, {}, o.overlap_band_edges);  // throws for edges out of order
+  check_band_edges(o.overlap_band_edges);
 }
 
 PairMatch match_relation_pair(const RangeScan& reference, const RangeScan& current,

@@ -24,19 +24,6 @@ std::string band_label(double low, double high) {
   return buf;
 }
 
-void check_edges(const std::vector<double>& edges) {
-  double previous = 0.0;
-  for (double edge : edges) {
-    if (!(edge > previous && edge < 1.0)) {
-      std::ostringstream m;
-      m << "overlap bands: the edges must rise strictly inside (0, 1), got " << edge << " after "
-        << previous;
-      throw Error(m.str());
-    }
-    previous = edge;
-  }
-}
-
 }  // namespace
 
 double scan_overlap(const std::vector<Eigen::Vector2d>& reference,
@@ -52,13 +39,26 @@ double scan_overlap(const std::vector<Eigen::Vector2d>& reference,
   return static_cast<double>(near) / static_cast<double>(current.size());
 }
 
+void check_band_edges(const std::vector<double>& edges) {
+  double previous = 0.0;
+  for (double edge : edges) {
+    if (!(edge > previous && edge < 1.0)) {
+      std::ostringstream m;
+      m << "overlap bands: the edges must rise strictly inside (0, 1), got " << edge << " after "
+        << previous;
+      throw Error(m.str());
+    }
+    previous = edge;
+  }
+}
+
 std::vector<FailureRow> failures_by_band(const std::vector<double>& overlaps,
                                          const std::vector<bool>& failed,
                                          const std::vector<double>& edges) {
   if (overlaps.size() != failed.size())
     throw Error("overlap bands: " + std::to_string(overlaps.size()) + " overlaps but " +
                 std::to_string(failed.size()) + " outcomes");
-  check_edges(edges);
+  check_band_edges(edges);
   std::vector<double> bounds{0.0};
   bounds.insert(bounds.end(), edges.begin(), edges.end());
   bounds.push_back(1.0);

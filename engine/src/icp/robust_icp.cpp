@@ -9,11 +9,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/breakpoints.hpp"
 #include "point_buckets.hpp"
 #include "scan_segments.hpp"
 
@@ -50,11 +50,7 @@ void validate(const IcpOptions& options) {
   check_positive(options.min_scale_m, "min_scale_m");
   check_positive(options.max_correspondence_m, "max_correspondence_m");
   check_positive(options.fit_distance_m, "fit_distance_m");
-  if (!(options.breakpoint_angle_rad >= 0.0) ||
-      options.breakpoint_angle_rad >= std::numbers::pi / 2) {
-    throw Error("IcpOptions.breakpoint_angle_rad must lie in [0, pi/2), got " +
-                std::to_string(options.breakpoint_angle_rad));
-  }
+  check_grazing_angle(options.breakpoint_angle_rad, "IcpOptions.breakpoint_angle_rad");
   if (options.min_segment_points < 1)
     throw Error("IcpOptions.min_segment_points must be >= 1, got 0");
   if (options.max_iterations < 1) {

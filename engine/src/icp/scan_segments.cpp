@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
@@ -64,10 +63,7 @@ std::vector<Segment> segment_scan(const std::vector<Eigen::Vector2d>& points, do
                                   double resolution_m, double breakpoint_angle_rad) {
   check_positive(gap_m, "gap_m");
   check_positive(resolution_m, "resolution_m");
-  if (!(breakpoint_angle_rad >= 0.0) || breakpoint_angle_rad >= std::numbers::pi / 2) {
-    throw Error("IcpOptions.breakpoint_angle_rad must lie in [0, pi/2), got " +
-                std::to_string(breakpoint_angle_rad));
-  }
+  check_grazing_angle(breakpoint_angle_rad, "IcpOptions.breakpoint_angle_rad");
   // The adaptive part of the gap: at range r and beam step d, neighbours on a wall seen at
   // grazing angle lambda lie r sin(d) / sin(lambda - d) apart (the adaptive breakpoint
   // detector of Borges and Aldon). d is the scan's median step between consecutive points.

@@ -3,6 +3,7 @@
 /// of Borges and Aldon, shared by ICP's segmentation (seed 004) and the one-scan maps of the
 /// relations protocol (issue 30).
 #include <limits>
+#include <string>
 
 namespace gridloc {
 
@@ -12,5 +13,9 @@ namespace gridloc {
 /// beam) or grazing is 0; at most `cap_steps` beam spacings (sin(step) each).
 double breakpoint_growth(double step_rad, double grazing_rad,
                          double cap_steps = std::numeric_limits<double>::infinity());
+
+/// Throws gridloc::Error "<name> must lie in [0, pi/2), got <value>" for a grazing angle
+/// outside [0, pi/2) or NaN.
+void check_grazing_angle(double grazing_rad, const std::string& name);
 
 }  // namespace gridloc

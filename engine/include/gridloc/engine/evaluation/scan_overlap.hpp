@@ -26,6 +26,10 @@ struct FailureRow {
   int failures = 0;
 };
 
+/// Throws gridloc::Error unless `edges` rise strictly inside (0, 1) (the failure table's
+/// band edges).
+void check_band_edges(const std::vector<double>& edges);
+
 /// The overlap bands between `edges` (ascending, inside (0, 1)): "0-e0", "e0-e1", ...,
 /// "eN-1" (%g: "0-0.2", "0.8-1"), each row counting the `overlaps` in [low, high) (the last
 /// includes 1) and the `failed` among them. Throws gridloc::Error for unsorted or out-of-range
