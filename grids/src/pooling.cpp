@@ -27,9 +27,24 @@ struct Min {
   }
 };
 
+/// out[i] = Op(a[i], b[i]) for i < n, where b's run never overlaps out's (a may be out).
+template <class Op, typename T>
+void combine(T* out, const T* a, const T* __restrict b, int n) {
+  for (int i = 0; i < n; ++i) out[i] = Op::packed(a[i], b[i]);
+}
+
 void check_size(int size, const char* what) {
   if (size < 1)
     throw Error(std::string(what) + ": block size must be >= 1, got " + std::to_string(size));
+}
+
+/// `nonzero` clipped to the grid (an empty rectangle stays empty).
+CellRect checked(CellRect nonzero, int width, int height) {
+  nonzero.x0 = std::clamp(nonzero.x0, 0, width);
+  nonzero.y0 = std::clamp(nonzero.y0, 0, height);
+  nonzero.x1 = std::clamp(nonzero.x1, nonzero.x0, width);
+  nonzero.y1 = std::clamp(nonzero.y1, nonzero.y0, height);
+  return nonzero;
 }
 
 // van Herk / Gil-Werman along one axis: split the axis into blocks [jk, jk + k); `pre` holds
@@ -134,21 +149,35 @@ Grid<float> pool_reference(const Grid<float>& g, int size) {
 
 /// The pool of blocks 2s from the pool of blocks s: a 2s block is four s blocks, at offsets
 /// 0 and s on each axis (those starting past the grid's edge are empty and skipped), so this
-/// is exact. Each pass is an elementwise Op of two contiguous runs, which the compiler turns
-/// into packed min/max instructions (MAXPS/MINPS with SSE2; see pool_doubled's test).
+/// is exact. Each pass is an elementwise Op of two contiguous runs that do not overlap, which
+/// the compiler turns into packed min/max instructions (see pool_doubled's test). Only the
+/// rectangle `nonzero` (cells outside it are zero) grown by s on its low sides can change:
+/// any other cell reads zeros alone, and the pool of zeros is zero.
+template <class Op, typename T>
+CellRect pool_doubled_in_place(T* cells, int w, int h, int s, CellRect nonzero) {
+  const CellRect out{std::max(nonzero.x0 - s, 0), std::max(nonzero.y0 - s, 0), nonzero.x1,
+                     nonzero.y1};
+  const auto row = [&](int y) { return cells + static_cast<std::ptrdiff_t>(y) * w; };
+  // Along x: each row's run [x0, x1) against the run s ahead, through a copy of both (the
+  // runs overlap when s is shorter than the row).
+  const int x_end = std::min(out.x1, w - s);  // the cells with a block s ahead
+  std::vector<T> copy(static_cast<std::size_t>(std::max(x_end + s - out.x0, 0)));
+  for (int y = out.y0; y < out.y1 && x_end > out.x0; ++y) {
+    T* o = row(y) + out.x0;
+    std::copy(o, o + copy.size(), copy.begin());
+    combine<Op>(o, copy.data(), copy.data() + s, x_end - out.x0);
+  }
+  // Along y: row y against row y + s, a different run of the grid.
+  for (int y = out.y0; y < out.y1 && y + s < h; ++y) {
+    T* o = row(y) + out.x0;
+    combine<Op>(o, o, row(y + s) + out.x0, out.x1 - out.x0);
+  }
+  return out;
+}
+
 template <class Op, typename T>
 void pool_doubled_in_place(T* cells, int w, int h, int s) {
-  const auto row = [&](int y) { return cells + static_cast<std::ptrdiff_t>(y) * w; };
-  // Both passes read only cells they have not written yet (x + s and row y + s lie ahead).
-  for (int y = 0; y < h; ++y) {
-    T* o = row(y);
-    for (int x = 0; x + s < w; ++x) o[x] = Op::packed(o[x], o[x + s]);
-  }
-  for (int y = 0; y + s < h; ++y) {
-    T* o = row(y);
-    const T* b = row(y + s);
-    for (int x = 0; x < w; ++x) o[x] = Op::packed(o[x], b[x]);
-  }
+  pool_doubled_in_place<Op>(cells, w, h, s, CellRect{0, 0, w, h});
 }
 
 template <class Op>
@@ -193,6 +222,18 @@ void max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int si
 void min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size) {
   check_size(size, "min_pool_doubled_in_place");
   pool_doubled_in_place<Min>(cells, width, height, size);
+}
+
+CellRect max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size,
+                                   CellRect nonzero) {
+  check_size(size, "max_pool_doubled_in_place");
+  return pool_doubled_in_place<Max>(cells, width, height, size, checked(nonzero, width, height));
+}
+
+CellRect min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size,
+                                   CellRect nonzero) {
+  check_size(size, "min_pool_doubled_in_place");
+  return pool_doubled_in_place<Min>(cells, width, height, size, checked(nonzero, width, height));
 }
 
 Grid<float> max_pool(const Grid<float>& g, int size) {

@@ -125,6 +125,48 @@ TEST(Pooling, DoubledInt8EqualsReferenceOnRandomGrids) {
   EXPECT_THROW(max_pool_doubled_in_place(&cell, 1, 1, 0), Error);
 }
 
+// A grid that is zero outside a rectangle, pooled over that rectangle only level after
+// level, equals the same grid pooled whole, and the rectangle returned holds every nonzero
+// cell (a padded map's pyramid).
+TEST(Pooling, DoubledInt8OverTheNonzeroRectangleEqualsTheWholeGrid) {
+  std::mt19937 rng(79);
+  for (int c = 0; c < 200; ++c) {
+    const int w = uniform_int(rng, 1, 90), h = uniform_int(rng, 1, 70);
+    CellRect rect{uniform_int(rng, 0, w), uniform_int(rng, 0, h), 0, 0};
+    rect.x1 = uniform_int(rng, rect.x0, w);
+    rect.y1 = uniform_int(rng, rect.y0, h);
+    std::vector<std::int8_t> whole(static_cast<std::size_t>(w) * h, 0);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+      for (int x = rect.x0; x < rect.x1; ++x) {
+        whole[static_cast<std::size_t>(y) * w + x] =
+            static_cast<std::int8_t>(uniform_int(rng, -127, 127));
+      }
+    }
+    std::vector<std::int8_t> mx = whole, mn = whole, region_mx = whole, region_mn = whole;
+    CellRect mx_rect = rect, mn_rect = rect;
+    for (int size = 1; size <= 64; size *= 2) {
+      max_pool_doubled_in_place(mx.data(), w, h, size);
+      min_pool_doubled_in_place(mn.data(), w, h, size);
+      mx_rect = max_pool_doubled_in_place(region_mx.data(), w, h, size, mx_rect);
+      mn_rect = min_pool_doubled_in_place(region_mn.data(), w, h, size, mn_rect);
+      const std::string what = "case " + std::to_string(c) + " size " + std::to_string(size);
+      ASSERT_EQ(region_mx, mx) << what;
+      ASSERT_EQ(region_mn, mn) << what;
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const bool inside =
+              x >= mx_rect.x0 && x < mx_rect.x1 && y >= mx_rect.y0 && y < mx_rect.y1;
+          if (!inside) {
+            ASSERT_EQ(mx[static_cast<std::size_t>(y) * w + x], 0) << what;
+          }
+        }
+      }
+    }
+  }
+  std::int8_t cell = 0;
+  EXPECT_THROW(min_pool_doubled_in_place(&cell, 1, 1, 0, CellRect{0, 0, 1, 1}), Error);
+}
+
 TEST(Pooling, KeepsTheGeometry) {
   GridGeometry geo;
   geo.resolution = 0.05;

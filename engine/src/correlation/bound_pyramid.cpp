@@ -16,17 +16,29 @@ namespace {
 
 constexpr int kMaxDepth = 30;  // 2^h must fit an int
 
+/// The least and the greatest of the first n > 0 values: plain reductions, which vectorize for
+/// integers (std::minmax_element's iterators do not).
+template <typename T>
+std::pair<T, T> min_max(const T* values, std::size_t n) {
+  T low = values[0], high = values[0];
+  for (std::size_t i = 1; i < n; ++i) {
+    low = std::min(low, values[i]);
+    high = std::max(high, values[i]);
+  }
+  return {low, high};
+}
+
 /// BoundPyramid::arc_max_all, grid_min_all and abs_max of the first n cells of an arc view
 /// and a grid, each value read through `value` (a decode: monotone).
 template <typename T, typename Value>
 void fill_extremes(BoundPyramid& p, const T* arc, const T* grid, std::size_t n, Value value) {
   if (n == 0) return;
-  const auto [arc_min, arc_max] = std::minmax_element(arc, arc + n);
-  const auto [grid_min, grid_max] = std::minmax_element(grid, grid + n);
-  p.arc_max_all = value(*arc_max);
-  p.grid_min_all = value(*grid_min);
-  for (const T* v : {arc_min, arc_max, grid_min, grid_max}) {
-    p.abs_max = std::max(p.abs_max, std::abs(value(*v)));
+  const auto [arc_min, arc_max] = min_max(arc, n);
+  const auto [grid_min, grid_max] = min_max(grid, n);
+  p.arc_max_all = value(arc_max);
+  p.grid_min_all = value(grid_min);
+  for (const T v : {arc_min, arc_max, grid_min, grid_max}) {
+    p.abs_max = std::max(p.abs_max, std::abs(value(v)));
   }
 }
 
@@ -55,18 +67,22 @@ EvidenceGrid geometry_only(const EvidenceGrid& grid) {
 void pool_int8_levels(BoundPyramid& p, const PaddedGrid& global, int depth) {
   const int w = global.grid.width(), h = global.grid.height();
   const std::size_t cells = global.cell_count();
+  // The padding is zeros: each level pools only the map and the cells it spreads into.
+  CellRect arc_nonzero{global.pad, global.pad, global.pad + global.width,
+                       global.pad + global.height};
+  CellRect min_nonzero = arc_nonzero;
   for (int level = 1; level <= depth; ++level) {
     const int half = 1 << (level - 1);
     // Level 0 is the padded grid's own int8 copy (BoundPyramid::arc_max8).
-    std::vector<std::int8_t> arc = level == 1 ? global.arc_view8() : p.arc_max8.back();
-    max_pool_doubled_in_place(arc.data(), w, h, half);
+    Int8Cells arc = level == 1 ? global.arc_view8() : p.arc_max8.back();
+    arc_nonzero = max_pool_doubled_in_place(arc.data(), w, h, half, arc_nonzero);
     p.arc_max8.push_back(std::move(arc));
     if (p.min_levels) {
-      std::vector<std::int8_t> min = level == 1 ? global.grid8 : p.grid_min8.back();
-      min_pool_doubled_in_place(min.data(), w, h, half);
+      Int8Cells min = level == 1 ? global.grid8 : p.grid_min8.back();
+      min_nonzero = min_pool_doubled_in_place(min.data(), w, h, half, min_nonzero);
       p.grid_min8.push_back(std::move(min));
-    } else if (level == 1) {  // the grid's minimum, standing for every level
-      std::vector<std::int8_t> min(global.grid8.size(), 0);  // kGatherSlack zeros at the end
+    } else if (level == 1) {                  // the grid's minimum, standing for every level
+      Int8Cells min(global.grid8.size(), 0);  // kGatherSlack zeros at the end
       std::fill_n(min.begin(), cells,
                   static_cast<std::int8_t>(std::lround(p.grid_min_all * p.int8_scale)));
       p.grid_min8.push_back(std::move(min));

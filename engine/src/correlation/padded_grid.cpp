@@ -20,10 +20,11 @@ std::int8_t to_int8(float v, float scale) {
 
 /// `grid`'s cells converted by `convert` into a zero grid of geometry `padded` at (pad,
 /// pad), followed by `slack` zeros.
-template <typename T, typename Convert>
-std::vector<T> padded_cells(const EvidenceGrid& grid, const GridGeometry& padded, int pad,
-                            std::size_t slack, Convert convert) {
-  std::vector<T> out(padded.size() + slack, T{0});
+template <typename Cells, typename Convert>
+Cells padded_cells(const EvidenceGrid& grid, const GridGeometry& padded, int pad, std::size_t slack,
+                   Convert convert) {
+  using T = typename Cells::value_type;
+  Cells out(padded.size() + slack, T{0});
   for (int iy = 0; iy < grid.height(); ++iy) {
     const float* row = grid.row(iy);
     T* to = out.data() + padded.index(pad, iy + pad);
@@ -59,16 +60,18 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule, PaddedCells
   const float scale = int8_scale_for(grid.cells);
   if (scale > 0.0f) {
     p.int8_scale = scale;
-    p.grid8 = padded_cells<std::int8_t>(grid, p.grid.geometry, pad, kGatherSlack,
-                                        [scale](float v) { return to_int8(v, scale); });
+    p.grid8 = padded_cells<Int8Cells>(grid, p.grid.geometry, pad, kGatherSlack,
+                                      [scale](float v) { return to_int8(v, scale); });
     if (!p.arc_is_grid) {
-      p.arc_cells8 = padded_cells<std::int8_t>(grid, p.grid.geometry, pad, kGatherSlack,
-                                               [&](float v) { return to_int8(arc(v), scale); });
+      p.arc_cells8 = padded_cells<Int8Cells>(grid, p.grid.geometry, pad, kGatherSlack,
+                                             [&](float v) { return to_int8(arc(v), scale); });
     }
     if (cells == PaddedCells::Int8WhereExact) return p;
   }
-  p.grid.cells = padded_cells<float>(grid, p.grid.geometry, pad, 0, [](float v) { return v; });
-  if (!p.arc_is_grid) p.arc_cells = padded_cells<float>(grid, p.grid.geometry, pad, 0, arc);
+  p.grid.cells =
+      padded_cells<std::vector<float>>(grid, p.grid.geometry, pad, 0, [](float v) { return v; });
+  if (!p.arc_is_grid)
+    p.arc_cells = padded_cells<std::vector<float>>(grid, p.grid.geometry, pad, 0, arc);
   return p;
 }
 
@@ -82,7 +85,7 @@ std::vector<float> PaddedGrid::float_cells() const {
 std::vector<float> PaddedGrid::arc_float_cells() const {
   if (has_floats()) return arc_view();
   std::vector<float> out(cell_count());
-  const std::vector<std::int8_t>& arc = arc_view8();
+  const Int8Cells& arc = arc_view8();
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(arc[i]);
   return out;
 }
@@ -98,8 +101,8 @@ float int8_scale_for(const std::vector<float>& cells) {
   return 0.0f;
 }
 
-std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells, float scale) {
-  std::vector<std::int8_t> out(cells.size() + kGatherSlack, 0);
+Int8Cells to_int8_with_slack(const std::vector<float>& cells, float scale) {
+  Int8Cells out(cells.size() + kGatherSlack, 0);
   std::transform(cells.begin(), cells.end(), out.begin(),
                  [scale](float v) { return to_int8(v, scale); });
   return out;

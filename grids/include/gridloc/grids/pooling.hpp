@@ -32,6 +32,22 @@ void min_pool_doubled_in_place(Grid<float>& pooled, int size);
 void max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size);
 void min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size);
 
+/// Cells [x0, x1) x [y0, y1) of a grid.
+struct CellRect {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+};
+/// The same on a grid whose cells outside `nonzero` are all zero (a padded map's border):
+/// only that rectangle grown by `size` on its low sides can change, so only it is pooled (the
+/// same cells as pooling the whole grid). Returns that grown rectangle, the nonzero cells of
+/// the result, for the next level.
+CellRect max_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size,
+                                   CellRect nonzero);
+CellRect min_pool_doubled_in_place(std::int8_t* cells, int width, int height, int size,
+                                   CellRect nonzero);
+
 /// Plain O(cells * size^2) loops computing what max_pool does: the oracle for tests.
 Grid<float> max_pool_reference(const Grid<float>& g, int size);
 /// Plain O(cells * size^2) loops computing what min_pool does: the oracle for tests.

@@ -41,8 +41,8 @@ struct BoundPyramid {
   /// less memory, so the same sums with fewer cache misses, and from the fixed-point
   /// kernel's integer lanes. Each ends in kGatherSlack bytes. [0] is empty: level 0 is the
   /// PaddedGrid's own int8 copies (arc_view8(), grid8), read from there. Empty otherwise.
-  std::vector<std::vector<std::int8_t>> arc_max8;
-  std::vector<std::vector<std::int8_t>> grid_min8;
+  std::vector<Int8Cells> arc_max8;
+  std::vector<Int8Cells> grid_min8;
   float int8_scale = 1.0f;
   bool has_int8() const { return !arc_max8.empty(); }
   /// int8 levels of a grid whose values are all -1, 0 or 1.

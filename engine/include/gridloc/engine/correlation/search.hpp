@@ -10,6 +10,7 @@
 
 #include "gridloc/engine/correlation/fixed_point_kernel.hpp"
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/large_pages.hpp"
 #include "gridloc/grids/likelihood_field.hpp"
 #include "gridloc/sensors/local_grid.hpp"
 #include "gridloc/sensors/range_scan.hpp"
@@ -45,7 +46,7 @@ struct PaddedGrid {
   std::vector<float> arc_cells;
   /// The grid and the arc view (where it differs) as int8 times int8_scale, each followed by
   /// kGatherSlack readable bytes; empty when the values are not whole multiples.
-  std::vector<std::int8_t> grid8, arc_cells8;
+  Int8Cells grid8, arc_cells8;
   /// 1 for -1/0/1 evidence grids, kFieldLevels for a likelihood field (see int8_scale_for).
   float int8_scale = 1.0f;
   int pad = 0;
@@ -62,7 +63,7 @@ struct PaddedGrid {
   /// The arc view's floats: empty without has_floats() (see arc_float_cells).
   const std::vector<float>& arc_view() const { return arc_is_grid ? grid.cells : arc_cells; }
   /// The arc view as int8 (has_int8() only), followed by kGatherSlack bytes.
-  const std::vector<std::int8_t>& arc_view8() const { return arc_is_grid ? grid8 : arc_cells8; }
+  const Int8Cells& arc_view8() const { return arc_is_grid ? grid8 : arc_cells8; }
   /// The float an int8 cell stands for, exactly (int8_scale_for).
   float decode(std::int8_t v) const { return static_cast<float>(v) / int8_scale; }
   /// The grid's and the arc view's value at flat index i, whichever way they are kept.
@@ -82,7 +83,7 @@ float int8_scale_for(const std::vector<float>& cells);
 
 /// The cells times `scale` as int8 (exact for the values int8_scale_for accepts with that
 /// scale), followed by kGatherSlack zero bytes.
-std::vector<std::int8_t> to_int8_with_slack(const std::vector<float>& cells, float scale = 1.0f);
+Int8Cells to_int8_with_slack(const std::vector<float>& cells, float scale = 1.0f);
 
 /// Throws gridloc::Error when the padded grid would have 2^31 cells or more (offsets are
 /// int32).
