@@ -32,6 +32,13 @@ std::size_t rounded_up(std::size_t bytes, std::size_t unit) {
   return (bytes + unit - 1) / unit * unit;
 }
 
+/// The mapping of a block: whole huge pages, and a last part under kLargeBlockBytes in small
+/// pages (a huge page for it would waste more than it holds).
+std::size_t mapping_length(std::size_t bytes) {
+  const std::size_t tail = bytes % kHugePage;
+  return tail >= kLargeBlockBytes ? rounded_up(bytes, kHugePage) : rounded_up(bytes, page_size());
+}
+
 }  // namespace
 
 bool maps_large_blocks() {
@@ -42,8 +49,8 @@ void* allocate_large(std::size_t bytes) {
   if (bytes < kLargeBlockBytes) return ::operator new(bytes);
   if (bytes > static_cast<std::size_t>(-1) / 2) throw std::bad_alloc();
   // Map one huge page more than needed, then give back the unaligned head and tail: the
-  // block starts on a huge page, and its last part (under 2 MiB) takes small pages.
-  const std::size_t size = rounded_up(bytes, page_size());
+  // block starts on a huge page.
+  const std::size_t size = mapping_length(bytes);
   const std::size_t mapped_size = size + kHugePage;
   void* mapped =
       mmap(nullptr, mapped_size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -64,7 +71,7 @@ void deallocate_large(void* block, std::size_t bytes) noexcept {
     ::operator delete(block);
     return;
   }
-  munmap(block, rounded_up(bytes, page_size()));
+  munmap(block, mapping_length(bytes));
 }
 
 #else

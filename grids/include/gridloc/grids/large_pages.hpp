@@ -1,6 +1,7 @@
 #pragma once
 /// An allocator for the big grids (a padded map, a bound pyramid's levels). A block of
-/// kLargeBlockBytes or more gets its own mapping, aligned to 2 MiB and advised as
+/// kLargeBlockBytes or more gets its own mapping, aligned to 2 MiB (a last part of 1 MiB or
+/// more rounded up to a whole 2 MiB page, a shorter one left in small pages) and advised as
 /// transparent huge pages where the kernel offers them (Linux: MADV_HUGEPAGE on that
 /// mapping only, no process-wide setting), so filling it takes one page fault per 2 MiB
 /// instead of one per 4 KiB: on a virtual machine a fault costs microseconds, and filling
@@ -13,8 +14,8 @@
 
 namespace gridloc {
 
-/// Blocks from this size on are mapped on their own (2 MiB: one huge page).
-inline constexpr std::size_t kLargeBlockBytes = std::size_t{2} << 20;
+/// Blocks from this size on are mapped on their own (1 MiB: half a huge page).
+inline constexpr std::size_t kLargeBlockBytes = std::size_t{1} << 20;
 
 /// Whether blocks of kLargeBlockBytes or more get their own huge-page mapping in this build.
 bool maps_large_blocks();
