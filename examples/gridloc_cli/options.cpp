@@ -146,7 +146,12 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "winner (0 = none)")
       ->capture_default_str();
   cmd->add_option("--covariance-temperature", covariance_temperature,
-                  "the covariance weighs each pose by exp((score - best) / this)")
+                  "the covariance weighs each pose by exp((score - best) / this); the verdict "
+                  "reads its spread")
+      ->capture_default_str();
+  cmd->add_option("--ring-covariance-temperature", ring_covariance_temperature,
+                  "a sonar ring's answer reports the covariance at this temperature instead "
+                  "(0 = --covariance-temperature); no verdict changes with it")
       ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
@@ -189,6 +194,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   }
   options.covariance_cells = covariance_cells;
   options.covariance_temperature = covariance_temperature;
+  options.ring_covariance_temperature = ring_covariance_temperature;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

@@ -42,6 +42,7 @@ struct SearchArgs {
   int hypotheses = CorrelationOptions{}.hypotheses;
   int covariance_cells = CorrelationOptions{}.covariance_cells;
   double covariance_temperature = CorrelationOptions{}.covariance_temperature;
+  double ring_covariance_temperature = CorrelationOptions{}.ring_covariance_temperature;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and

@@ -173,7 +173,8 @@ int red_pixels(const cv::Mat& img) {
 }
 
 // The x, y images draw the estimate's 95 % covariance ellipse: a covariance turned off
-// (--covariance-cells 0) draws none, so far fewer red pixels.
+// (--covariance-cells 0) draws none, so far fewer red pixels (the ring's covariance reported
+// at --covariance-temperature, the wider one).
 TEST_F(HeatmapCli, TheCovarianceEllipseIsDrawn) {
   const std::string map = test::map_path("room_l");
   const std::string readings = readings_on(map);
@@ -181,7 +182,8 @@ TEST_F(HeatmapCli, TheCovarianceEllipseIsDrawn) {
   for (const int cells : {3, 0}) {
     const std::string out = dir.file("heat" + std::to_string(cells));
     const CliRun r = run_cli(dir, "heatmap --map " + quote(map) + " --readings " + quote(readings) +
-                                      " --prior 1.9,1.4,0.6 --covariance-cells " +
+                                      " --prior 1.9,1.4,0.6 --ring-covariance-temperature 0"
+                                      " --covariance-cells " +
                                       std::to_string(cells) + " --out " + quote(out));
     ASSERT_EQ(r.status, 0) << r.err;
     red[cells == 0] = red_pixels(cv::imread(out + "/score_xy_best_theta.png", cv::IMREAD_COLOR));

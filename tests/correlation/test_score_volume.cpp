@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/LU>
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "test_support.hpp"
 
@@ -97,6 +99,7 @@ TEST(PeakCovariance, ATemperatureAboveOneCountsTheNeighboursBelowTheBest) {
   SearchWindow w;
   w.center = {6.1, 1.05, 0.05};
   CorrelationOptions cold, hot;
+  cold.ring_covariance_temperature = hot.ring_covariance_temperature = 0.0;  // report at T
   hot.covariance_temperature = 10.0;
   const Estimate a = CorrelationEstimator(map, ring, cold).estimate(obs, w);
   const Estimate b = CorrelationEstimator(map, ring, hot).estimate(obs, w);
@@ -109,6 +112,49 @@ TEST(PeakCovariance, ATemperatureAboveOneCountsTheNeighboursBelowTheBest) {
   for (double bad : {0.0, -1.0, std::nan("")}) {
     hot.covariance_temperature = bad;
     test::expect_error([&] { CorrelationEstimator(map, ring, hot); }, {"covariance_temperature"});
+  }
+}
+
+// A sonar ring reports its covariance at ring_covariance_temperature; the verdict reads the
+// spread at covariance_temperature, so the pose, the confidence and the verdict stay. A scan
+// reports at covariance_temperature.
+TEST(PeakCovariance, ARingReportsItsOwnTemperatureAndNoVerdictChanges) {
+  const OccupancyMap map = corridor();
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Pose2 truth{6.0, 1.04, 0.0};
+  const Observation obs{simulate_sonar(map, ring, truth)};
+  SearchWindow w;
+  w.center = {6.1, 1.05, 0.05};
+  CorrelationOptions same, sharp;
+  same.ring_covariance_temperature = 0.0;
+  sharp.ring_covariance_temperature = 0.15;
+  const Estimate a = CorrelationEstimator(map, ring, same).estimate(obs, w);
+  const Estimate b = CorrelationEstimator(map, ring, sharp).estimate(obs, w);
+  EXPECT_EQ(a.pose.x, b.pose.x);
+  EXPECT_EQ(a.pose.y, b.pose.y);
+  EXPECT_EQ(a.confidence, b.confidence);
+  EXPECT_EQ(a.verdict, b.verdict);
+  EXPECT_EQ(a.confidence_parts.spread_m, b.confidence_parts.spread_m);
+  EXPECT_NEAR(a.confidence_parts.spread_m, std::sqrt(a.covariance(0, 0) + a.covariance(1, 1)),
+              1e-12);
+  // Along the corridor every pose scores alike at any temperature; across it and in heading
+  // the colder weights narrow the covariance reported.
+  EXPECT_NEAR(b.covariance(0, 0), a.covariance(0, 0), 1e-12);
+  EXPECT_LT(b.covariance(1, 1), 0.9 * a.covariance(1, 1)) << a.covariance << "\n" << b.covariance;
+  EXPECT_LT(b.covariance(2, 2), 0.9 * a.covariance(2, 2)) << a.covariance << "\n" << b.covariance;
+
+  Observation scan;
+  scan.scan = simulate_scan(map, truth, 180, 4.0, 0.01, 7);
+  CorrelationOptions same_scan = same, sharp_scan = sharp;
+  same_scan.reach_m = sharp_scan.reach_m = 4.0;
+  const Estimate c = CorrelationEstimator(map, same_scan).estimate(scan, w);
+  const Estimate d = CorrelationEstimator(map, sharp_scan).estimate(scan, w);
+  EXPECT_TRUE(c.covariance.isApprox(d.covariance, 1e-12)) << c.covariance << "\n" << d.covariance;
+
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    sharp.ring_covariance_temperature = bad;
+    test::expect_error([&] { CorrelationEstimator(map, ring, sharp); },
+                       {"ring_covariance_temperature"});
   }
 }
 

@@ -54,14 +54,16 @@ std::vector<LatticePose> distinct_peaks(std::vector<LatticePose> scored, double 
 /// correlation score real-time correlative matching uses); the weighted covariance of
 /// (x, y, theta) plus the lattice's own quantization variance (step^2 / 12 per axis), rotated
 /// into the world frame by the map's yaw.
-Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
-                                const PaddedGrid& global,
-                                const std::function<PlacedLocalGrid(int)>& placed_at, int k,
-                                double yaw, double temperature) {
+std::vector<Eigen::Matrix3d> peak_covariances(const LatticePose& best, const Lattice& lattice,
+                                              const PaddedGrid& global,
+                                              const std::function<PlacedLocalGrid(int)>& placed_at,
+                                              int k, double yaw,
+                                              const std::vector<double>& temperatures) {
   const double res = global.grid.geometry.resolution;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-  double total = 0.0;
+  const std::size_t n = temperatures.size();
+  std::vector<Eigen::Vector3d> mean(n, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Matrix3d> second(n, Eigen::Matrix3d::Zero());
+  std::vector<double> total(n, 0.0);
   // A lattice that goes all the way round wraps: the neighbours of heading 0 include the last.
   const bool round = lattice.headings * std::abs(lattice.step_theta) >= 2.0 * std::numbers::pi;
   const int t0 = round ? best.it - k : std::max(0, best.it - k);
@@ -73,25 +75,42 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
          ++iy) {
       for (int ix = std::max(lattice.x0, best.ix - k); ix <= std::min(lattice.x1, best.ix + k);
            ++ix) {
-        const double w =
-            std::exp(std::min(0.0, score(global, placed, ix, iy) - best.score) / temperature);
+        const double below = std::min(0.0, score(global, placed, ix, iy) - best.score);
         // Offsets from the winner: metres, metres, radians.
         const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
                                 (t - best.it) * lattice.step_theta);
-        total += w;
-        mean += w * d;
-        second += w * d * d.transpose();
+        for (std::size_t m = 0; m < n; ++m) {
+          const double w = std::exp(below / temperatures[m]);
+          total[m] += w;
+          mean[m] += w * d;
+          second[m] += w * d * d.transpose();
+        }
       }
     }
   }
-  mean /= total;
-  Eigen::Matrix3d cov = second / total - mean * mean.transpose();
-  cov(0, 0) += res * res / 12.0;
-  cov(1, 1) += res * res / 12.0;
-  cov(2, 2) += lattice.step_theta * lattice.step_theta / 12.0;
   Eigen::Matrix3d rotate = Eigen::Matrix3d::Identity();  // grid frame -> world frame
   rotate.topLeftCorner<2, 2>() << std::cos(yaw), -std::sin(yaw), std::sin(yaw), std::cos(yaw);
-  return rotate * cov * rotate.transpose();
+  std::vector<Eigen::Matrix3d> out;
+  for (std::size_t m = 0; m < n; ++m) {
+    mean[m] /= total[m];
+    Eigen::Matrix3d cov = second[m] / total[m] - mean[m] * mean[m].transpose();
+    cov(0, 0) += res * res / 12.0;
+    cov(1, 1) += res * res / 12.0;
+    cov(2, 2) += lattice.step_theta * lattice.step_theta / 12.0;
+    out.push_back(rotate * cov * rotate.transpose());
+  }
+  return out;
+}
+
+Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
+                                const PaddedGrid& global,
+                                const std::function<PlacedLocalGrid(int)>& placed_at, int k,
+                                double yaw, double temperature) {
+  return peak_covariances(best, lattice, global, placed_at, k, yaw, {temperature}).front();
+}
+
+double position_spread(const Eigen::Matrix3d& covariance) {
+  return std::sqrt(std::max(0.0, covariance(0, 0) + covariance(1, 1)));
 }
 
 /// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`
@@ -104,8 +123,7 @@ void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
   const double distinct =
       e.score > 0.0 ? std::clamp((e.score - e.second_score) / e.score, 0.0, 1.0) : 0.0;
   c.distinctness = searched_second ? distinct / (distinct + v.distinct_scale) : 1.0;
-  const double spread = std::sqrt(std::max(0.0, e.covariance(0, 0) + e.covariance(1, 1)));
-  c.sharpness = std::exp(-spread / v.spread_scale_m);
+  c.sharpness = std::exp(-c.spread_m / v.spread_scale_m);
   e.confidence = c.agreement * c.fit * c.distinctness * c.sharpness;
   e.ambiguous = false;
   for (std::size_t k = 1; k < e.alternatives.size(); ++k) {

@@ -29,8 +29,17 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
                                 const PaddedGrid& global,
                                 const std::function<PlacedLocalGrid(int)>& placed_at, int k,
                                 double yaw, double temperature = 1.0);
+/// The same at each of `temperatures`, from one scoring of the neighbourhood.
+std::vector<Eigen::Matrix3d> peak_covariances(const LatticePose& best, const Lattice& lattice,
+                                              const PaddedGrid& global,
+                                              const std::function<PlacedLocalGrid(int)>& placed_at,
+                                              int k, double yaw,
+                                              const std::vector<double>& temperatures);
+/// sqrt(var x + var y) of a pose covariance (m): ConfidenceParts::spread_m.
+double position_spread(const Eigen::Matrix3d& covariance);
 
-/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e`.
+/// Fills the confidence, its parts, the ambiguity flag and the verdict of `e` (the sharpness
+/// from e.confidence_parts.spread_m, which the caller sets).
 void judge(Estimate& e, bool searched_second, const VerdictOptions& v);
 
 /// Estimate::agreement: the share of `ranges` a noise-free simulation at `pose` reproduces

@@ -247,14 +247,21 @@ Peaks this_many_hypotheses(WindowSearch& search, const CorrelationOptions& optio
 }
 
 /// peak_covariance() of the winner within `cells`, reusing branch and bound's heading grids.
-Eigen::Matrix3d winner_covariance(const WindowSearch& search, int cells, double yaw,
-                                  double temperature) {
+std::vector<Eigen::Matrix3d> winner_covariances(const WindowSearch& search, int cells, double yaw,
+                                                const std::vector<double>& temperatures) {
   std::function<PlacedLocalGrid(int)> placed_at = [&](int it) {
     return search.grids ? search.grids->placed(it)
                         : place_heading(search.finest(), search.lattice.theta(it));
   };
-  return peak_covariance(search.result.best, search.lattice, *search.finest().global, placed_at,
-                         cells, yaw, temperature);
+  return peak_covariances(search.result.best, search.lattice, *search.finest().global, placed_at,
+                          cells, yaw, temperatures);
+}
+
+/// The temperature of the covariance an observation's estimate reports.
+double reported_temperature(const Observation& observation, const CorrelationOptions& options) {
+  const bool ring = !observation.scan && !observation.points;
+  return ring && options.ring_covariance_temperature > 0.0 ? options.ring_covariance_temperature
+                                                           : options.covariance_temperature;
 }
 
 /// Estimate::stats of the searches, timed since `start`.
@@ -365,8 +372,12 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
         {lattice_to_world(map_.geometry, lattice, options_.resolution, p.ix, p.iy, p.it), p.score});
   }
   if (options_.covariance_cells > 0) {
-    e.covariance = winner_covariance(search, options_.covariance_cells, map_.geometry.yaw,
-                                     options_.covariance_temperature);
+    // The verdict reads the spread at covariance_temperature; the answer reports its own.
+    const std::vector<Eigen::Matrix3d> c = winner_covariances(
+        search, options_.covariance_cells, map_.geometry.yaw,
+        {options_.covariance_temperature, reported_temperature(observation, options_)});
+    e.confidence_parts.spread_m = position_spread(c[0]);
+    e.covariance = c[1];
   }
   judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
   fill_stats(e, search.result, level_count, start);

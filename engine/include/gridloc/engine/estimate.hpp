@@ -52,7 +52,11 @@ struct ConfidenceParts {
   double fit = 0.0;           ///< normalized_score clamped: how much of the best possible score
   double agreement = 0.0;     ///< Estimate::agreement (1 for scans, which have none)
   double distinctness = 0.0;  ///< d / (d + 0.01), d = (score - second_score) / score
-  double sharpness = 0.0;     ///< exp(-sqrt(var x + var y) / 0.5 m), from the covariance
+  double sharpness = 0.0;     ///< exp(-spread_m / 0.5 m)
+  /// sqrt(var x + var y) of the winner's covariance at CorrelationOptions::
+  /// covariance_temperature (m), which the sharpness reads: Estimate::covariance as reported
+  /// may be weighted at another temperature (ring_covariance_temperature).
+  double spread_m = 0.0;
 };
 
 struct Estimate {
@@ -81,7 +85,8 @@ struct Estimate {
   double agreement = 0.0;
   /// Covariance of (x, y, theta) in the world frame (m^2, m rad, rad^2), from the scores
   /// around the lattice winner read as a likelihood (examples/gridloc_cli/README.md, under
-  /// `localize`); zero when not computed (CorrelationOptions::covariance off).
+  /// `localize`; a sonar ring's at CorrelationOptions::ring_covariance_temperature); zero
+  /// when not computed (CorrelationOptions::covariance off).
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   SearchStats stats;
 };
