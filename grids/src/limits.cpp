@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 
 namespace gridloc {
 namespace {
@@ -14,16 +15,11 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+  return message_number(v);
 }
 
 void check_positive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("resource limit ") + field + " must be a positive number, got " +
-                num(value));
-  }
+  require_positive(value, "resource limits", field);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "octomap_file.hpp"
 
 namespace gridloc {
@@ -29,11 +30,7 @@ constexpr double kEps = 1e-6;
   throw Error(file + ": " + what);
 }
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return message_number(v); }
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();

@@ -9,6 +9,7 @@
 
 #include "gridloc/grids/cell_walk.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 
 namespace gridloc {
 namespace {
@@ -16,25 +17,16 @@ namespace {
 /// Bytes per cell while drawing: two uint16 beam counts and the map's state.
 constexpr double kBytesPerCell = 5.0;
 
-/// A number as the messages print it.
 std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
+  return message_number(value);
 }
 
 void require_positive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("map from log: ") + field + " must be > 0 and finite, got " +
-                number(value));
-  }
+  gridloc::require_positive(value, "map from log", field);
 }
 
 void require_non_negative(double value, const char* field) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("map from log: ") + field + " must be >= 0 and finite, got " +
-                number(value));
-  }
+  gridloc::require_non_negative(value, "map from log", field);
 }
 
 /// validate() of a scan, except that a scan without any return passes: it draws no hit.

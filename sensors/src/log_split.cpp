@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 
 namespace gridloc {
 namespace {
@@ -14,11 +15,7 @@ void require_scans(const std::vector<LaserRecord>& lasers) {
 }
 
 /// A number as the messages print it ("30", "0.86", "4.29497e+09").
-std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
+std::string number(double value) { return message_number(value); }
 
 /// Puts scan k of block `block` into its part, counting the blocks that hold a scan.
 void assign(LogSplit& split, std::size_t k, long long block, long long& last_block) {

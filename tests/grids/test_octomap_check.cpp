@@ -382,7 +382,7 @@ TEST_F(OctomapCheck, LimitsAreChecked) {
   // The limits themselves.
   limits.max_cells = 0.0;
   EXPECT_EQ(message_of([&] { load_octomap(ot_, {}, limits); }),
-            "resource limit max_cells must be a positive number, got 0");
+            "resource limits: max_cells must be positive and finite, got 0");
 }
 
 // octomap's readers print their warnings and errors on stderr (std::cerr and fprintf); the

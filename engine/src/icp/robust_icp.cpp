@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/sensors/breakpoints.hpp"
 #include "point_buckets.hpp"
 #include "scan_segments.hpp"
@@ -35,10 +36,7 @@ void check_points(const std::vector<Eigen::Vector2d>& points, const char* name) 
 namespace icp_detail {
 
 void check_positive(double v, const char* field) {
-  if (!(v > 0.0) || !std::isfinite(v)) {
-    throw Error(std::string("IcpOptions.") + field + " must be positive and finite, got " +
-                std::to_string(v));
-  }
+  require_positive(v, "IcpOptions", field);
 }
 
 }  // namespace icp_detail

@@ -9,27 +9,27 @@
 #include <utility>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/sensors/driver_readings.hpp"
 
 namespace gridloc {
 namespace {
 
+constexpr const char* kOwner = "localizer options";
+
 /// Throws naming `field` and its value unless `ok`.
 void require(bool ok, const char* field, double value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "localizer options: " << field << " = " << value << " " << rule;
-  throw Error(message.str());
+  require_option(ok, kOwner, field, value, rule);
 }
 
 /// Throws naming `field` unless `value` lies in [0, 1].
 void require_share(double value, const char* field) {
-  require(value >= 0.0 && value <= 1.0, field, value, "must lie in [0, 1]");
+  gridloc::require_share(value, kOwner, field);
 }
 
 /// Throws naming `field` unless `value` is finite and >= 0.
 void require_non_negative(double value, const char* field) {
-  require(std::isfinite(value) && value >= 0.0, field, value, "must be finite and >= 0");
+  gridloc::require_non_negative(value, kOwner, field);
 }
 
 /// Throws unless the options are usable; runs before the global grids are built.

@@ -10,6 +10,7 @@
 
 #include "free_outline.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "outline_walls.hpp"
 
 namespace gridloc {
@@ -24,10 +25,7 @@ constexpr double kMinSimplifyCells = 1.5;
 constexpr double kMinWallCells = 3.0;
 
 void check_positive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("MapFeatureOptions: ") + field + " must be positive and finite, got " +
-                std::to_string(value));
-  }
+  require_positive(value, "MapFeatureOptions", field);
 }
 
 /// The signed angle (rad, left positive) from direction `in` to direction `out`; 0 when
