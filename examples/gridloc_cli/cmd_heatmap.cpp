@@ -26,6 +26,7 @@
 #include "heatmap_volume.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {
@@ -88,14 +89,6 @@ void check_volume_size(const CorrelationEstimator& estimator, const Observation&
   }
 }
 
-/// The folder of --out, created if missing.
-fs::path output_folder(const std::string& out) {
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (!fs::is_directory(out)) throw Error("--out " + out + ": cannot create the folder");
-  return fs::path(out);
-}
-
 /// The local grid at the refined pose and the map cell of its robot cell.
 struct LocalAtEstimate {
   SparseLocalGrid grid;
@@ -141,9 +134,8 @@ void write_heatmap_files(const fs::path& dir, const CorrelationEstimator& estima
                   render_local_overlay(estimator.level(0), volume.geometry, local.grid, local.robot,
                                        estimator.ring().footprint, marks));
   write_npy(file("scores.npy"), volume);
-  std::ofstream f(file("volume.json"));
-  f << volume_json(volume, window, file_names()).dump(2) << "\n";
-  if (!f) throw Error(file("volume.json") + ": cannot write the volume description");
+  write_json_file(file("volume.json"), volume_json(volume, window, file_names()),
+                  "the volume description");
 }
 
 /// The output of `heatmap`: the estimate, its lattice pose, the volume's shape and best

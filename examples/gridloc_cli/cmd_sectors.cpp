@@ -18,6 +18,7 @@
 #include "gridloc/grids/polygon_map.hpp"
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "output_files.hpp"
 #include "sectors_render.hpp"
 #include "stdin_input.hpp"
 
@@ -104,14 +105,7 @@ void run(const SectorsArgs& args) {
   }
   const PolygonMap map = load_polygon_map(input_path(args.polygons, "--polygons"), limits());
   // The folder first: a bad --out fails before the sectors are computed.
-  if (!args.out.empty()) {
-    std::error_code ec;
-    fs::create_directories(args.out, ec);
-    if (!fs::is_directory(args.out)) {
-      throw Error("--out " + args.out + ": cannot create the folder" +
-                  (ec ? " (" + ec.message() + ")" : ""));
-    }
-  }
+  if (!args.out.empty()) output_folder(args.out);
   SectorOptions options;
   options.cell_m = args.cell_m;
   options.limits = limits();
@@ -125,11 +119,7 @@ void run(const SectorsArgs& args) {
     const std::string png_path = (dir / "sectors.png").string();
     const std::string saved_path = (dir / "sector_map.json").string();
     save_sectors(sectors, options, saved_path);  // for localize --sectors
-    {
-      std::ofstream file(json_path);
-      file << out.dump(2) << "\n";
-      if (!file) throw Error(json_path + ": cannot write the sectors");
-    }
+    write_json_file(json_path, out, "the sectors");
     plot::write_png(png_path, render_sectors(sectors, fs::path(args.polygons).filename().string()));
     written = "wrote " + png_path + ", " + json_path + " and " + saved_path + "\n";
   }

@@ -17,6 +17,7 @@
 #include "gridloc/grids/polygon_map.hpp"
 #include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "output_files.hpp"
 #include "stdin_input.hpp"
 #include "team_io.hpp"
 #include "team_render.hpp"
@@ -95,15 +96,10 @@ TeamPicture picture_of(const TeamArgs& args, const TeamSimulator& simulator, con
 
 void write_outputs(const TeamArgs& args, const TeamSimulator& simulator, const TeamCase& team,
                    const TeamAnswer& answer, const nlohmann::json& out) {
-  std::error_code error;
-  fs::create_directories(args.out, error);
-  if (error)
-    throw Error("--out " + args.out + ": cannot create the folder (" + error.message() + ")");
-  const std::string json_path = (fs::path(args.out) / "team.json").string();
-  const std::string png_path = (fs::path(args.out) / "team.png").string();
-  std::ofstream file(json_path);
-  file << out.dump(2) << "\n";
-  if (!file) throw Error(json_path + ": cannot write");
+  const fs::path folder = output_folder(args.out);
+  const std::string json_path = (folder / "team.json").string();
+  const std::string png_path = (folder / "team.png").string();
+  write_json_file(json_path, out, "the team's answer");
   plot::write_png(png_path, render_team(picture_of(args, simulator, team, answer)));
   if (!args.json) std::printf("wrote %s and %s\n", png_path.c_str(), json_path.c_str());
 }

@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "gridloc/engine/disambiguation/region.hpp"
 #include "gridloc/grids/error.hpp"
+#include "output_files.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -79,18 +80,11 @@ nlohmann::json plan_json(const MinimumDistancePlan& plan, int true_index) {
 }
 
 void make_out_dir(const std::string& out) {
-  if (out.empty()) return;
-  std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (!std::filesystem::is_directory(out))
-    throw Error("--out " + out + ": cannot create the folder");
+  if (!out.empty()) output_folder(out);
 }
 
 void write_plan_json(const std::string& out_dir, const nlohmann::json& out) {
-  const std::string path = (std::filesystem::path(out_dir) / "disambiguation.json").string();
-  std::ofstream file(path);
-  file << out.dump(2) << "\n";
-  if (!file) throw Error(path + ": cannot write the plan");
+  write_json_file(std::filesystem::path(out_dir) / "disambiguation.json", out, "the plan");
 }
 
 }  // namespace gridloc::cli
