@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 
 namespace gridloc {
 namespace correlation_detail {
@@ -44,11 +45,8 @@ void check(const CorrelationOptions& options) {
     throw Error("correlation options: covariance_temperature must be finite and > 0, got " +
                 std::to_string(options.covariance_temperature));
   }
-  if (!(options.ring_covariance_temperature >= 0.0) ||
-      !std::isfinite(options.ring_covariance_temperature)) {
-    throw Error("correlation options: ring_covariance_temperature must be finite and >= 0, got " +
-                std::to_string(options.ring_covariance_temperature));
-  }
+  require_non_negative(options.ring_covariance_temperature, "correlation options",
+                       "ring_covariance_temperature");
   validate(options.scan);
   options.field.validate();
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws

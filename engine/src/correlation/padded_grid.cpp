@@ -70,8 +70,9 @@ PaddedGrid pad_grid(const EvidenceGrid& grid, int pad, ArcRule rule, PaddedCells
   }
   p.grid.cells =
       padded_cells<std::vector<float>>(grid, p.grid.geometry, pad, 0, [](float v) { return v; });
-  if (!p.arc_is_grid)
+  if (!p.arc_is_grid) {
     p.arc_cells = padded_cells<std::vector<float>>(grid, p.grid.geometry, pad, 0, arc);
+  }
   return p;
 }
 
