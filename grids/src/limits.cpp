@@ -14,10 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string num(double v) {
-  return message_number(v);
-}
-
 void check_positive(double value, const char* field) {
   require_positive(value, "resource limits", field);
 }
@@ -36,22 +32,24 @@ void ResourceLimits::validate() const {
 void check_limit(double amount, double limit, const std::string& what, const std::string& unit,
                  const char* option) {
   if (amount <= limit) return;
-  throw Error(what + ": " + num(amount) + " " + unit + " exceeds the limit of " + num(limit) + " " +
-              unit + " (raise it with " + option + ")");
+  throw Error(what + ": " + message_number(amount) + " " + unit + " exceeds the limit of " +
+              message_number(limit) + " " + unit + " (raise it with " + option + ")");
 }
 
 double check_grid_cells(double width, double height, const ResourceLimits& limits,
                         const std::string& what) {
   if (!(width >= 1.0) || !(height >= 1.0)) {
-    throw Error(what + ": a grid of " + num(width) + " x " + num(height) +
+    throw Error(what + ": a grid of " + message_number(width) + " x " + message_number(height) +
                 " cells is empty or not a number");
   }
   const double cells = width * height;
-  check_limit(cells, limits.max_cells, what + " (" + num(width) + " x " + num(height) + ")",
-              "cells", LimitNames::cells);
+  check_limit(cells, limits.max_cells,
+              what + " (" + message_number(width) + " x " + message_number(height) + ")", "cells",
+              LimitNames::cells);
   constexpr double kIntMax = std::numeric_limits<int>::max();
   if (width > kIntMax || height > kIntMax) {
-    throw Error(what + ": a side of " + num(std::max(width, height)) + " cells is too long");
+    throw Error(what + ": a side of " + message_number(std::max(width, height)) +
+                " cells is too long");
   }
   return cells;
 }
@@ -59,8 +57,9 @@ double check_grid_cells(double width, double height, const ResourceLimits& limit
 void check_memory(double bytes, const ResourceLimits& limits, const std::string& what) {
   const double mb = std::ceil(bytes / (1024.0 * 1024.0));
   if (mb <= limits.max_memory_mb) return;
-  throw Error(what + " would need about " + num(mb) + " MB, more than the limit of " +
-              num(limits.max_memory_mb) + " MB (raise it with " + LimitNames::memory_mb + ")");
+  throw Error(what + " would need about " + message_number(mb) + " MB, more than the limit of " +
+              message_number(limits.max_memory_mb) + " MB (raise it with " + LimitNames::memory_mb +
+              ")");
 }
 
 std::uintmax_t check_input_file(const std::string& path, const std::string& what,
@@ -74,8 +73,9 @@ std::uintmax_t check_input_file(const std::string& path, const std::string& what
   if (ec) throw Error(path + ": cannot read the size of the " + what + ": " + ec.message());
   const double mb = std::ceil(static_cast<double>(bytes) / (1024.0 * 1024.0));
   if (mb > limits.max_file_mb) {
-    throw Error(path + ": the " + what + " is " + num(mb) + " MB, more than the limit of " +
-                num(limits.max_file_mb) + " MB (raise it with " + LimitNames::file_mb + ")");
+    throw Error(path + ": the " + what + " is " + message_number(mb) +
+                " MB, more than the limit of " + message_number(limits.max_file_mb) +
+                " MB (raise it with " + LimitNames::file_mb + ")");
   }
   return bytes;
 }

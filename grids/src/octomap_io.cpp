@@ -30,8 +30,6 @@ constexpr double kEps = 1e-6;
   throw Error(file + ": " + what);
 }
 
-std::string num(double v) { return message_number(v); }
-
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -40,16 +38,16 @@ std::string lower_extension(const std::string& path) {
 
 void check_slice(const std::string& path, const OctomapSlice& s) {
   if (std::isnan(s.z_min) || std::isnan(s.z_max)) {
-    fail(path, "OctoMap band z_min/z_max must be numbers, got z_min " + num(s.z_min) + ", z_max " +
-                   num(s.z_max));
+    fail(path, "OctoMap band z_min/z_max must be numbers, got z_min " + message_number(s.z_min) +
+                   ", z_max " + message_number(s.z_max));
   }
   if (!(s.z_min < s.z_max)) {
-    fail(path, "OctoMap band: z_min (" + num(s.z_min) + " m) must be below z_max (" + num(s.z_max) +
-                   " m)");
+    fail(path, "OctoMap band: z_min (" + message_number(s.z_min) + " m) must be below z_max (" +
+                   message_number(s.z_max) + " m)");
   }
   if (!(s.resolution >= 0.0) || !std::isfinite(s.resolution)) {
     fail(path, "OctoMap slice resolution must be positive when given (0 = the tree's), got " +
-                   num(s.resolution));
+                   message_number(s.resolution));
   }
 }
 
@@ -145,10 +143,10 @@ OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice,
     any_in_band = any_in_band || in_band(b);
   }
   if (!any_in_band) {
-    fail(path, "no known voxel overlaps the band z in [" + num(slice.z_min) + ", " +
-                   num(slice.z_max) + "] m (the tree's voxels span z in [" +
-                   num(static_cast<double>(lo[2]) * res) + ", " +
-                   num(static_cast<double>(hi[2]) * res) + "] m)");
+    fail(path, "no known voxel overlaps the band z in [" + message_number(slice.z_min) + ", " +
+                   message_number(slice.z_max) + "] m (the tree's voxels span z in [" +
+                   message_number(static_cast<double>(lo[2]) * res) + ", " +
+                   message_number(static_cast<double>(hi[2]) * res) + "] m)");
   }
 
   // The 2-D geometry: the x-y box, cut into cells of the requested side.
@@ -160,7 +158,8 @@ OccupancyMap load_octomap(const std::string& path, const OctomapSlice& slice,
   g.yaw = 0.0;
   const double w = std::max(1.0, std::ceil(static_cast<double>(hi[0] - lo[0]) * scale - kEps));
   const double h = std::max(1.0, std::ceil(static_cast<double>(hi[1] - lo[1]) * scale - kEps));
-  check_grid_cells(w, h, limits, path + ": the OctoMap's 2-D map at " + num(cell) + " m");
+  check_grid_cells(w, h, limits,
+                   path + ": the OctoMap's 2-D map at " + message_number(cell) + " m");
   g.width = static_cast<int>(w);
   g.height = static_cast<int>(h);
   OccupancyMap map(g, CellState::Unknown);

@@ -17,10 +17,6 @@ namespace {
 /// Bytes per cell while drawing: two uint16 beam counts and the map's state.
 constexpr double kBytesPerCell = 5.0;
 
-std::string number(double value) {
-  return message_number(value);
-}
-
 void require_positive(double value, const char* field) {
   gridloc::require_positive(value, "map from log", field);
 }
@@ -111,8 +107,9 @@ GridGeometry grid_for(const std::vector<LaserRecord>& lasers,
   const Eigen::Vector2d size_m = (hi - lo).array() + 2.0 * options.margin_m;
   const double width = std::ceil(size_m.x() / options.resolution) + 1.0;
   const double height = std::ceil(size_m.y() / options.resolution) + 1.0;
-  const std::string what = "map from log: the map of " + number(size_m.x()) + " m x " +
-                           number(size_m.y()) + " m at " + number(options.resolution) + " m";
+  const std::string what = "map from log: the map of " + message_number(size_m.x()) + " m x " +
+                           message_number(size_m.y()) + " m at " +
+                           message_number(options.resolution) + " m";
   const double cells = check_grid_cells(width, height, options.limits, what);
   check_memory(kBytesPerCell * cells, options.limits, what);
   GridGeometry g;
@@ -170,7 +167,7 @@ void validate(const LogMapOptions& options) {
   }
   if (!(options.occupied_ratio > 0.0 && options.occupied_ratio <= 1.0)) {
     throw Error("map from log: occupied_ratio must be in (0, 1], got " +
-                number(options.occupied_ratio));
+                message_number(options.occupied_ratio));
   }
   options.limits.validate();
 }

@@ -15,7 +15,6 @@ void require_scans(const std::vector<LaserRecord>& lasers) {
 }
 
 /// A number as the messages print it ("30", "0.86", "4.29497e+09").
-std::string number(double value) { return message_number(value); }
 
 /// Puts scan k of block `block` into its part, counting the blocks that hold a scan.
 void assign(LogSplit& split, std::size_t k, long long block, long long& last_block) {
@@ -63,14 +62,15 @@ std::string to_string(SplitRule rule) {
 
 void validate(const LogSplitOptions& options) {
   if (!(options.block_s > 0.0) || !std::isfinite(options.block_s)) {
-    throw Error("log split: block_s must be > 0 and finite, got " + number(options.block_s));
+    throw Error("log split: block_s must be > 0 and finite, got " +
+                message_number(options.block_s));
   }
   if (options.block_scans < 1) {
     throw Error("log split: block_scans must be >= 1, got " + std::to_string(options.block_scans));
   }
   if (!(options.max_backstep_s >= 0.0) || !std::isfinite(options.max_backstep_s)) {
     throw Error("log split: max_backstep_s must be >= 0 and finite, got " +
-                number(options.max_backstep_s));
+                message_number(options.max_backstep_s));
   }
 }
 
@@ -81,19 +81,19 @@ std::string timestamp_problem(const std::vector<LaserRecord>& lasers,
     const std::string where = "line " + std::to_string(r.line) + "'s timestamp ";
     if (!std::isfinite(r.timestamp)) return where + "is not finite";
     if (r.timestamp_resolution > 0.1 * options.block_s) {
-      return where + number(r.timestamp) + " is printed to " + number(r.timestamp_resolution) +
-             " s only";
+      return where + message_number(r.timestamp) + " is printed to " +
+             message_number(r.timestamp_resolution) + " s only";
     }
     if (r.timestamp < latest - options.max_backstep_s) {
-      return where + number(r.timestamp) + " steps back from " + number(latest);
+      return where + message_number(r.timestamp) + " steps back from " + message_number(latest);
     }
     latest = std::max(latest, r.timestamp);
   }
   const double span = lasers.empty() ? 0.0 : latest - lasers.front().timestamp;
   if (!(span > options.block_s)) {
-    return "the timestamps span " + number(span) + " s, not more than one block";
+    return "the timestamps span " + message_number(span) + " s, not more than one block";
   }
-  if (span / options.block_s > 1e12) return "the timestamps span " + number(span) + " s";
+  if (span / options.block_s > 1e12) return "the timestamps span " + message_number(span) + " s";
   return "";
 }
 
