@@ -1,311 +1,268 @@
-// gridloc eval: seed 001's protocol over {turned, oriented} x {raw, thinned}, or over the
-// estimators (--estimators), with the sonar ring or a simulated laser (--laser); on polygon
-// maps, or with a sector estimator, the sector protocol (eval_sectors.cpp); with --drive, the
-// drive protocol (eval_drive.cpp). The options and their checks, then the run;
-// eval_output.cpp prints the results.
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
+// gridloc eval PROTOCOL: one subcommand per evaluation protocol (sonar, laser, drive, sectors,
+// disambiguation, team), each with only its options, drawn from shared groups
+// (eval_option_groups.hpp); eval_protocols.cpp runs them. The old spelling (`gridloc eval`
+// with --laser, --drive D, --protocol P, polygon maps or a sector estimator) keeps working:
+// its options stay on `gridloc eval`, out of its --help, and a run prints the new spelling.
+#include <iostream>
+#include <map>
 #include <memory>
-#include <sstream>
 
 #include "commands.hpp"
-#include "eval_disambiguation.hpp"
-#include "eval_drive.hpp"
-#include "eval_output.hpp"
-#include "eval_sectors.hpp"
-#include "eval_team.hpp"
+#include "eval_option_groups.hpp"
+#include "eval_protocols.hpp"
 #include "gridloc/grids/error.hpp"
-#include "gridloc/grids/map_io.hpp"
-#include "gridloc/grids/polygon_map.hpp"
-#include "limit_options.hpp"
-#include "progress.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {
 namespace {
 
-/// The bundled polygon maps: the sector protocol's default.
-constexpr const char* kPolygonMaps =
-    "polygons/room_rect,polygons/room_l,polygons/room_furnished,polygons/office";
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
-/// A bare name ("room_l", "polygons/office") means a bundled map.
-std::string map_file(const std::string& name) {
-  return name != kStdin && name.find(".yaml") == std::string::npos && !is_octomap_path(name)
-             ? data_dir() + "/" + name + ".yaml"
-             : name;
-}
-
-/// The sector protocol: polygon maps, 360-degree scans, no prior.
-void run_sectors(const EvalArgs& args, const std::vector<std::string>& files) {
-  if (args.noisy || args.echo_filter) {
-    throw Error(
-        "--noisy and --echo-filter belong to seed 001's sonar protocol, not to the sector "
-        "protocol (polygon maps, 360 degree scans)");
-  }
-  SectorEvalArgs sector_args;
-  sector_args.maps = files;
-  sector_args.json = args.json;
-  sector_args.quiet = args.quiet;
-  sector_args.trials_out = args.trials_out;
-  SectorEvalOptions& options = sector_args.options;
-  options.trials = args.trials;
-  options.seed = args.seed;
-  options.beams = args.laser.beams;
-  options.max_range = args.laser.max_range;
-  options.sigma_m = args.laser.sigma_m;
-  args.search.apply(options.correlation);
-  options.correlation.resolution = args.step_xy;
-  if (!args.estimators.empty()) {
-    options.estimators.clear();
-    for (const auto& name : split(args.estimators)) {
-      options.estimators.push_back(parse_estimator_kind(name));
-    }
-  }
-  run_sector_eval(sector_args);
-}
-
-/// Throws unless --step-xy is a positive cell size.
-void check_step(double step_xy) {
-  if (!(step_xy > 0.0) || !std::isfinite(step_xy)) {
-    throw Error("--step-xy must be a positive cell size in metres, got " + std::to_string(step_xy));
-  }
-}
-
-/// True when --estimators names a sector estimator (they need the sector protocol).
-bool names_a_sector_estimator(const std::string& estimators) {
-  bool sectors = false;
-  for (const auto& name : split(estimators)) {
-    sectors |= is_sector_estimator(parse_estimator_kind(name));
-  }
-  return sectors;
-}
-
-/// The files of --maps (with sector estimators and no --maps, the bundled polygon maps);
-/// throws when there is none or one does not exist.
-std::vector<std::string> map_files(const EvalArgs& args, bool sector_estimators) {
-  std::vector<std::string> files;
-  for (const auto& name : split(sector_estimators && !args.maps_given ? kPolygonMaps : args.maps)) {
-    files.push_back(map_file(name));
-  }
-  if (files.empty()) throw Error("--maps names no map");
-  for (const auto& f : files) {
-    if (f != kStdin && !std::filesystem::exists(f)) throw Error("--maps: " + f + ": no such file");
-  }
-  return files;
-}
-
-/// True when `files` are polygon maps (the sector protocol), false when they are grid maps;
-/// throws when they mix the two, or when sector estimators get grid maps.
-bool polygon_maps(const std::vector<std::string>& files, bool sector_estimators) {
-  const auto polygon = [](const std::string& f) { return is_polygon_map_input(f, "--maps"); };
-  const std::size_t polygons =
-      static_cast<std::size_t>(std::count_if(files.begin(), files.end(), polygon));
-  if (polygons > 0 && polygons < files.size()) {
-    throw Error(
-        "--maps mixes polygon maps with grid maps: the sector protocol needs polygon maps only");
-  }
-  if (sector_estimators && polygons == 0) {
-    throw Error(
-        "the sectors estimators need polygon maps (--maps polygons/office or a polygon YAML; "
-        "maps/README.md, Polygon map format)");
-  }
-  return polygons > 0;
-}
-
-/// --protocol and the options of the protocols it names.
-struct ProtocolArgs {
-  std::string name;  ///< empty: seed 001's (or the sector protocol on polygon maps)
-  DisambiguationEvalArgs disambiguation;
-  TeamEvalArgs team;
+/// What one eval command parses into.
+struct EvalCommandArgs {
+  EvalArgs args;
+  DriveArgs drive;
+  ProtocolArgs protocol;
 };
 
-/// The team protocol's default maps: the thesis's T-room and the bundled rooms.
-constexpr const char* kTeamMaps =
-    "polygons/t_room,polygons/room_rect,polygons/room_l,polygons/room_furnished";
+std::shared_ptr<EvalCommandArgs> default_args() {
+  auto command = std::make_shared<EvalCommandArgs>();
+  command->args.ring = data_dir() + "/sensors/wheelchair_14.yaml";
+  return command;
+}
 
-/// Seed 001's protocol options from the command line.
-EvalOptions eval_options(const EvalArgs& args) {
-  EvalOptions options;
-  options.trials = args.trials;
-  options.seed = args.seed;
-  args.search.apply(options.search);
-  args.field.apply(options.search);
-  options.search.resolution = options.window.step_xy = args.step_xy;
-  options.noise = parse_noise(args.noise);
-  options.noisy.enabled = args.noisy;
-  options.laser = args.laser;
-  if (!args.estimators.empty()) {
-    // One configuration per estimator, the correlation with seed 001's best models.
-    options.configurations.clear();
-    for (const auto& name : split(args.estimators)) {
-      options.configurations.push_back(
-          {LocalModel::Oriented, GlobalModel::Thinned, parse_estimator_kind(name)});
+/// The old spelling's options, under this heading: the help leaves them out.
+constexpr const char* kOldSpelling = "Old spelling";
+
+class EvalHelp : public CLI::Formatter {
+ public:
+  std::string make_group(std::string group, bool is_positional,
+                         std::vector<const CLI::Option*> options) const override {
+    if (group == kOldSpelling) return {};
+    return CLI::Formatter::make_group(std::move(group), is_positional, std::move(options));
+  }
+};
+
+const std::string kGridMapsHelp =
+    "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths (one may be -: "
+    "standard input)";
+const std::string kAnyMapsHelp =
+    "comma-separated bundled map names or YAML paths, polygon or occupancy maps (one may be "
+    "-: standard input)";
+
+/// A value as the shell reads it back.
+std::string shell_word(const std::string& value) {
+  if (!value.empty() &&
+      value.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                              "_+-=.,/:@%") == std::string::npos) {
+    return value;
+  }
+  std::string quoted = "'";
+  for (const char c : value) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// The new spelling of an old-spelling run: `gridloc eval PROTOCOL` and each option given
+/// that the protocol's command has (the others had no effect), renamed where it names it
+/// otherwise.
+std::string new_spelling(CLI::App& cmd, EvalProtocol protocol) {
+  static const std::map<std::string, std::string> renamed = {{"drive", "--distance"},
+                                                             {"drive-firings", "--firings"},
+                                                             {"drive-windowed", "--windowed"},
+                                                             {"drive-window-m", "--window-m"},
+                                                             {"protocol", ""},
+                                                             {"laser", ""}};
+  std::string line = "gridloc eval " + protocol_name(protocol);
+  for (const CLI::Option* option : cmd.get_options()) {
+    if (option->count() == 0 || option->get_lnames().empty()) continue;
+    const std::string& long_name = option->get_lnames().front();
+    const auto rename = renamed.find(long_name);
+    const std::string name = rename == renamed.end() ? "--" + long_name : rename->second;
+    const CLI::App* protocol_command = cmd.get_subcommand(protocol_name(protocol));
+    if (name.empty() || !protocol_command->get_option_no_throw(name)) continue;
+    line += " " + name;
+    if (option->get_expected_max() == 0) continue;  // a flag
+    std::string values;
+    for (const std::string& value : option->results())
+      values += (values.empty() ? "" : ",") + value;
+    line += " " + shell_word(values);
+  }
+  return line;
+}
+
+/// Throws when options of `gridloc eval` itself came before the protocol's name.
+void refuse_options_before(const CLI::App& eval, const std::string& protocol) {
+  for (const CLI::Option* option : eval.get_options()) {
+    if (option->count() == 0 || option->get_lnames().empty()) continue;
+    throw Error("gridloc eval " + protocol + ": options follow the protocol (gridloc eval " +
+                protocol + " --" + option->get_lnames().front() + " ...), got --" +
+                option->get_lnames().front() + " before it");
+  }
+}
+
+/// Registers `gridloc eval NAME`, its options from `add`, and its run.
+template <class AddOptions>
+void add_protocol(CLI::App* eval, EvalProtocol protocol, const std::string& description,
+                  AddOptions add) {
+  auto command = default_args();
+  CLI::App* cmd = eval->add_subcommand(protocol_name(protocol), description);
+  cmd->fallthrough(false);  // the old spelling's options on `gridloc eval` are not its
+  add(cmd, *command);
+  cmd->callback([eval, protocol, command] {
+    refuse_options_before(*eval, protocol_name(protocol));
+    run_protocol(protocol, command->args, command->drive, command->protocol);
+  });
+}
+
+void add_grid_protocols(CLI::App* eval) {
+  const std::string estimators =
+      "compare these estimators on the same trials: comma-separated correlation, icp, "
+      "correlation+icp (icp needs the laser); default: the correlation over {turned, oriented} "
+      "x {raw, thinned}";
+  add_protocol(eval, EvalProtocol::Sonar,
+               "seed 001's protocol with the sonar ring: random poses on grid maps, a prior "
+               "window each",
+               [&](CLI::App* cmd, EvalCommandArgs& c) {
+                 add_map_options(cmd, c.args, kRoomMaps, kGridMapsHelp, true);
+                 add_trial_options(cmd, c.args, "random poses per map");
+                 add_ring_options(cmd, c.args, true);
+                 add_sonar_protocol_flags(cmd, c.args);
+                 add_search_options(cmd, c.args, true);
+                 add_estimator_option(cmd, c.args, estimators);
+                 add_output_options(cmd, c.args, true);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
+               });
+  add_protocol(eval, EvalProtocol::Laser,
+               "seed 001's protocol with a simulated 360 degree laser instead of the ring",
+               [&](CLI::App* cmd, EvalCommandArgs& c) {
+                 add_map_options(cmd, c.args, kRoomMaps, kGridMapsHelp, true);
+                 add_trial_options(cmd, c.args, "random poses per map");
+                 add_laser_options(cmd, c.args.laser);
+                 add_search_options(cmd, c.args, true);
+                 add_estimator_option(cmd, c.args, estimators);
+                 add_output_options(cmd, c.args, true);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}});
+               });
+  add_protocol(eval, EvalProtocol::Drive,
+               "the drive protocol: a short drive's fused firings against the last firing "
+               "alone, with the sonar ring",
+               [](CLI::App* cmd, EvalCommandArgs& c) {
+                 add_map_options(cmd, c.args, kRoomMaps, kGridMapsHelp, true);
+                 add_trial_options(cmd, c.args, "random poses per map");
+                 const std::size_t first = cmd->get_options().size();
+                 add_drive_protocol_options(cmd, c.drive);
+                 set_group_from(cmd, first, "Drive");
+                 add_ring_options(cmd, c.args, true);
+                 add_search_options(cmd, c.args, false);
+                 add_output_options(cmd, c.args, false);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
+               });
+}
+
+void add_other_protocols(CLI::App* eval) {
+  add_protocol(eval, EvalProtocol::Sectors,
+               "the sector protocol: polygon maps, 360 degree scans, no prior; the sector "
+               "estimators against the correlation search",
+               [](CLI::App* cmd, EvalCommandArgs& c) {
+                 add_map_options(cmd, c.args, kPolygonMaps,
+                                 "comma-separated bundled polygon map names or polygon YAML "
+                                 "paths (one may be -: standard input)",
+                                 false);
+                 add_trial_options(cmd, c.args, "random poses per map");
+                 add_laser_options(cmd, c.args.laser);
+                 add_search_options(cmd, c.args, false);
+                 add_estimator_option(cmd, c.args,
+                                      "comma-separated: sectors, sectors+correlation, correlation "
+                                      "(default: sectors and correlation)");
+                 add_output_options(cmd, c.args, true);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}});
+               });
+  add_protocol(eval, EvalProtocol::Disambiguation,
+               "seed 002's minimum-distance protocol on random offices, or with --sensor the "
+               "engine in the loop on --maps",
+               [](CLI::App* cmd, EvalCommandArgs& c) {
+                 const std::size_t first = cmd->get_options().size();
+                 add_disambiguation_options(cmd, c.protocol.disambiguation, false);
+                 set_group_from(cmd, first, "Disambiguation");
+                 add_map_options(cmd, c.args, kDisambiguationMaps,
+                                 "--sensor: comma-separated bundled occupancy map names or YAML "
+                                 "paths (one may be -: standard input)",
+                                 false);
+                 add_trial_options(cmd, c.args, "--sensor: ambiguous starts per map");
+                 add_ring_options(cmd, c.args, false);
+                 add_laser_options(cmd, c.args.laser);
+                 add_output_options(cmd, c.args, false);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
+               });
+  add_protocol(eval, EvalProtocol::Team,
+               "seed 003's team protocol: random linked teams of each size on each map",
+               [](CLI::App* cmd, EvalCommandArgs& c) {
+                 const std::size_t first = cmd->get_options().size();
+                 add_team_options(cmd, c.protocol.team, false);
+                 cmd->add_option("--sensor", c.protocol.disambiguation.sensor,
+                                 "ir (default) | laser | sonar")
+                     ->check(CLI::IsMember({"ir", "laser", "sonar"}));
+                 set_group_from(cmd, first, "Team");
+                 add_map_options(cmd, c.args, kTeamMaps, kAnyMapsHelp, false);
+                 add_trial_options(cmd, c.args, "random teams per size and map");
+                 add_ring_options(cmd, c.args, false);
+                 add_laser_options(cmd, c.args.laser);
+                 add_output_options(cmd, c.args, false);
+                 read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
+               });
+}
+
+/// The old spelling: every protocol's options on `gridloc eval` itself, the protocol told by
+/// --protocol, --drive, --laser, the maps and the estimators.
+void add_old_spelling(CLI::App* cmd) {
+  auto command = default_args();
+  EvalArgs& args = command->args;
+  add_map_options(cmd, args, kRoomMaps,
+                  kGridMapsHelp + "; polygon maps run the sector protocol (default there: " +
+                      std::string(kPolygonMaps) + ")",
+                  true);
+  add_ring_options(cmd, args, true);
+  add_trial_options(cmd, args, "random poses per map");
+  add_search_options(cmd, args, true);
+  add_output_options(cmd, args, true);
+  add_sonar_protocol_flags(cmd, args);
+  add_estimator_option(cmd, args,
+                       "compare these estimators on the same trials: comma-separated "
+                       "correlation, icp, correlation+icp (icp needs --laser), sectors, "
+                       "sectors+correlation (the sector protocol)");
+  cmd->add_flag("--laser", args.laser.enabled,
+                "observe with a simulated 360 degree laser instead of the sonar ring");
+  add_laser_options(cmd, args.laser);
+  add_drive_options(cmd, command->drive);
+  cmd->add_option("--protocol", command->protocol.name, "disambiguation | team")
+      ->check(CLI::IsMember({"disambiguation", "team"}));
+  add_disambiguation_options(cmd, command->protocol.disambiguation, true);
+  add_team_options(cmd, command->protocol.team, true);
+  set_group_from(cmd, 1, kOldSpelling);  // all but --help
+  read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
+  cmd->callback([cmd, command] {
+    if (!cmd->get_subcommands().empty()) return;  // `gridloc eval PROTOCOL` ran
+    const EvalProtocol protocol =
+        old_spelling_protocol(command->args, command->drive, command->protocol);
+    run_protocol(protocol, command->args, command->drive, command->protocol);
+    if (!command->args.quiet) {
+      std::cerr << "gridloc eval: this spelling keeps working; its protocol's own command is: "
+                << new_spelling(*cmd, protocol) << "\n";
     }
-    if (options.configurations.empty()) throw Error("--estimators names no estimator");
-  }
-  if (!args.global_model.empty()) {  // the oriented model (or each estimator) on that grid
-    const GlobalModel global = parse_global(args.global_model);
-    if (args.estimators.empty()) options.configurations = {{LocalModel::Oriented, global}};
-    for (auto& c : options.configurations) c.global = global;
-  }
-  if (args.echo_filter) options.echo_filter = EchoFilterOptions{};
-  return options;
-}
-
-/// Seed 002's protocol on random offices, or with --sensor the engine in the loop on --maps.
-void run_disambiguation(const EvalArgs& args, const DriveArgs& drive,
-                        const ProtocolArgs& protocol) {
-  if (drive.given) throw Error("--drive and --protocol disambiguation are different protocols");
-  const DisambiguationEvalArgs& options = protocol.disambiguation;
-  if (options.sensor == "ir")
-    throw Error(
-        "--sensor ir goes with --protocol team; the disambiguation protocol takes sonar or laser");
-  if (options.sensor.empty()) {
-    return run_disambiguation_eval(options, args.seed, args.json, args.quiet);
-  }
-  EvalArgs maps = args;
-  if (!args.maps_given) maps.maps = "room_symmetric,apartment_small";
-  EngineLoopInputs inputs;
-  inputs.map_files = map_files(maps, false);
-  if (polygon_maps(inputs.map_files, false)) {
-    throw Error("--sensor runs the engine on occupancy maps, not polygon maps");
-  }
-  inputs.ring = args.ring;
-  inputs.trials = args.trials;
-  inputs.laser_max_range = args.laser.max_range;
-  inputs.laser_sigma_m = args.laser.sigma_m;
-  inputs.laser_beams = args.laser.beams;
-  run_engine_loop_eval(options, inputs, args.seed, args.json, args.quiet);
-}
-
-/// Seed 003's team protocol on --maps (polygon or occupancy maps).
-void run_team(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
-  if (drive.given) throw Error("--drive and --protocol team are different protocols");
-  EvalArgs maps = args;
-  if (!args.maps_given) maps.maps = kTeamMaps;
-  TeamEvalInputs inputs;
-  inputs.map_files = map_files(maps, false);
-  inputs.sensor = protocol.disambiguation.sensor.empty() ? "ir" : protocol.disambiguation.sensor;
-  inputs.ring = args.ring;
-  inputs.trials = args.trials;
-  inputs.laser_max_range = args.laser.max_range;
-  inputs.laser_sigma_m = args.laser.sigma_m;
-  inputs.laser_beams = args.laser.beams;
-  run_team_eval(protocol.team, inputs, args.seed, args.json, args.quiet);
-}
-
-void run(const EvalArgs& args, const DriveArgs& drive, const ProtocolArgs& protocol) {
-  if (protocol.name == "disambiguation") return run_disambiguation(args, drive, protocol);
-  if (protocol.name == "team") return run_team(args, drive, protocol);
-  check_step(args.step_xy);
-  // Polygon maps or a sector estimator: the sector protocol.
-  const bool sector_estimators = names_a_sector_estimator(args.estimators);
-  const std::vector<std::string> files = map_files(args, sector_estimators);
-  if (drive.given) {
-    if (sector_estimators || polygon_maps(files, false)) {
-      throw Error(
-          "--drive runs the drive protocol on grid maps with the sonar ring, not on "
-          "polygon maps or with a sector estimator");
-    }
-    return run_drive_eval(args, drive, files);
-  }
-  if (polygon_maps(files, sector_estimators)) return run_sectors(args, files);
-
-  const EvalOptions options = eval_options(args);
-  std::vector<EvalMap> maps;
-  for (const auto& file : files)
-    maps.push_back({file, load_map(file, args.octomap.slice, "--maps")});
-  const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
-  const std::string what = "poses (" + std::to_string(maps.size()) + " maps x " +
-                           std::to_string(args.trials) + " trials, " +
-                           std::to_string(options.configurations.size()) + " configurations)";
-  const EvalReport report =
-      run_evaluation(maps, ring, options, progress_line("eval", what, args.quiet));
-
-  if (!args.trials_out.empty()) write_trials(args.trials_out, report, options);
-  const double rejected = mean_rejected_sonars(report);
-  if (args.json) return print_json(args, maps, report, rejected);
-  print_table_title(args, options, ring, maps.size(), report, rejected);
-  print_table_rows(report);
+  });
 }
 
 }  // namespace
 
 void add_eval(CLI::App& app) {
-  auto args = std::make_shared<EvalArgs>();
-  args->maps = "room_rect,room_l,room_furnished";
-  args->ring = data_dir() + "/sensors/wheelchair_14.yaml";
-  auto* cmd = app.add_subcommand("eval", "Run seed 001's evaluation protocol and print the table");
-  cmd->add_option(
-         "--maps", args->maps,
-         "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths (one may be "
-         "-: standard input); polygon maps run the sector protocol (default there: " +
-             std::string(kPolygonMaps) + ")")
-      ->capture_default_str()
-      ->each([args](const std::string&) { args->maps_given = true; });
-  args->octomap.add_to(cmd);
-  cmd->add_option("--ring", args->ring, "sonar ring YAML (- reads standard input)")
-      ->capture_default_str();
-  cmd->add_option("--trials", args->trials, "random poses per map")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "seed of poses, priors and noise")->capture_default_str();
-  cmd->add_option("--noise", args->noise, "realistic | none")->capture_default_str();
-  args->search.add_to(cmd);
-  cmd->add_option("--global-model,--global-grid", args->global_model,
-                  "run only the oriented local grid (or each of --estimators) on this global "
-                  "grid: thinned | raw | field (likelihood field, see --field-sigma)");
-  args->field.add_to(cmd);
-  cmd->add_option("--step-xy", args->step_xy,
-                  "the correlation search's grid cell and translation step (m; seed 001: 0.1)")
-      ->capture_default_str();
-  cmd->add_flag("--json", args->json, "print JSON instead of the table");
-  cmd->add_flag("--quiet", args->quiet, "no progress line");
-  cmd->add_flag("--noisy", args->noisy,
-                "the calibration protocol: harsh noise (3 cm + 2 %, 5 % dropouts and "
-                "crosstalk, specular beyond 60 deg), 15 % wrong priors, 25 % furniture changes");
-  cmd->add_flag("--echo-filter", args->echo_filter,
-                "fire the ring 3 times per trial and reject sonars whose echoes disagree "
-                "(EERUF-like; a rejected sonar adds nothing to the local grid)");
-  cmd->add_option("--estimators,--estimator", args->estimators,
-                  "compare these estimators on the same trials: comma-separated correlation, "
-                  "icp, correlation+icp (icp needs --laser), sectors, sectors+correlation (the "
-                  "sector protocol: polygon maps, 360 degree scans, no prior); default: the "
-                  "correlation over {turned, oriented} x {raw, thinned}, or sectors and "
-                  "correlation on polygon maps");
-  cmd->add_flag("--laser", args->laser.enabled,
-                "observe with a simulated 360 degree laser instead of the sonar ring");
-  cmd->add_option("--laser-beams", args->laser.beams, "laser beams per scan")
-      ->capture_default_str();
-  cmd->add_option("--laser-max-range", args->laser.max_range, "laser max range (m)")
-      ->capture_default_str();
-  cmd->add_option("--laser-noise", args->laser.sigma_m, "laser range noise sigma (m)")
-      ->capture_default_str();
-  cmd->add_option("--trials-out", args->trials_out,
-                  "write every trial (errors, scores, confidence, std) to this CSV");
-  auto drive = std::make_shared<DriveArgs>();
-  add_drive_options(cmd, *drive);
-  auto protocol = std::make_shared<ProtocolArgs>();
-  cmd->add_option("--protocol", protocol->name,
-                  "disambiguation: seed 002's minimum-distance protocol on random offices; "
-                  "team: seed 003's random linked teams (default maps " +
-                      std::string(kTeamMaps) +
-                      ") (default: seed 001's, or the sector protocol on polygon maps)")
-      ->check(CLI::IsMember({"disambiguation", "team"}));
-  add_disambiguation_options(cmd, protocol->disambiguation);
-  add_team_options(cmd, protocol->team);
-  read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
-  cmd->callback([args, drive, protocol] { run(*args, *drive, *protocol); });
+  CLI::App* cmd = app.add_subcommand(
+      "eval",
+      "Run an evaluation protocol and print its table or JSON: gridloc eval PROTOCOL [options] "
+      "(gridloc eval PROTOCOL --help lists its options). The old spelling, gridloc eval "
+      "[--laser | --drive D | --protocol P] [options], keeps working and prints the new one");
+  cmd->require_subcommand(0, 1);
+  add_grid_protocols(cmd);
+  add_other_protocols(cmd);
+  add_old_spelling(cmd);
+  cmd->formatter(std::make_shared<EvalHelp>());
 }
 
 }  // namespace gridloc::cli

@@ -179,8 +179,8 @@ void run_engine_loop_eval(const DisambiguationEvalArgs& args, const EngineLoopIn
   print_engine_loop_table(args, options, results);
 }
 
-void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
-  const std::string note = "--protocol disambiguation: ";
+void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args, bool old_spelling) {
+  const std::string note = old_spelling ? "--protocol disambiguation: " : "";
   cmd->add_option("--environments", args.environments, note + "random offices (seeds 1..N)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -202,12 +202,16 @@ void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args) {
       ->delimiter(',')
       ->check(CLI::IsMember({"col", "ual"}))
       ->capture_default_str();
-  cmd->add_option("--sensor", args.sensor,
-                  note +
-                      "sonar | laser: the engine in the loop on --maps (default room_symmetric, "
-                      "apartment_small), --trials ambiguous starts each, noisy sensing and "
-                      "odometry; --protocol team: ir (default) | laser | sonar")
-      ->check(CLI::IsMember({"sonar", "laser", "ir"}));
+  const std::string engine_loop =
+      "sonar | laser: the engine in the loop on --maps (default room_symmetric, "
+      "apartment_small), --trials ambiguous starts each, noisy sensing and odometry";
+  if (old_spelling) {
+    cmd->add_option("--sensor", args.sensor,
+                    note + engine_loop + "; --protocol team: ir (default) | laser | sonar")
+        ->check(CLI::IsMember({"sonar", "laser", "ir"}));
+  } else {
+    cmd->add_option("--sensor", args.sensor, engine_loop)->check(CLI::IsMember({"sonar", "laser"}));
+  }
   cmd->add_option("--strategies", args.strategies,
                   note + "comma-separated: weighted, hybrid (seed 002 §V-A)")
       ->delimiter(',')

@@ -27,9 +27,11 @@ struct EngineLoopInputs {
   int laser_beams = 360;
 };
 
-/// Registers --environments, --starts, --repeats, --points, --range, --algorithms, --strategies
-/// (they take effect with --protocol disambiguation).
-void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args);
+/// Registers --environments, --starts, --repeats, --points, --range, --algorithms,
+/// --strategies and --sensor: on `gridloc eval disambiguation`, or with `old_spelling` on
+/// `gridloc eval` (they take effect with --protocol disambiguation; --sensor with --protocol
+/// team too).
+void add_disambiguation_options(CLI::App* cmd, DisambiguationEvalArgs& args, bool old_spelling);
 
 /// Runs the protocol and prints its table (or JSON with `json`), progress on stderr unless
 /// `quiet`.

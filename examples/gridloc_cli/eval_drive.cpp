@@ -20,11 +20,12 @@ namespace {
 /// Refuses the other protocols' options, and drive options out of range, by their flags.
 void check_args(const EvalArgs& args, const DriveArgs& drive) {
   if (!(drive.drive_m > 0.0) || !(drive.drive_m <= 20.0)) {
-    throw Error("--drive must lie in (0, 20] m, got " + std::to_string(drive.drive_m));
+    throw Error(drive.distance_option + " must lie in (0, 20] m, got " +
+                std::to_string(drive.drive_m));
   }
-  if (drive.firings < 2) throw Error("--drive-firings must be at least 2");
+  if (drive.firings < 2) throw Error(drive.firings_option + " must be at least 2");
   if (!(drive.window_m >= 0.0) || !std::isfinite(drive.window_m)) {
-    throw Error("--drive-window-m must be finite and >= 0");
+    throw Error(drive.window_option + " must be finite and >= 0");
   }
   if (args.noisy || args.echo_filter || args.laser.enabled || !args.estimators.empty() ||
       !args.trials_out.empty()) {
@@ -126,6 +127,27 @@ void add_drive_options(CLI::App* cmd, DriveArgs& drive) {
                   "--drive: fuse the firings within this path length of the last (m)")
       ->capture_default_str()
       ->needs(on);
+}
+
+void add_drive_protocol_options(CLI::App* cmd, DriveArgs& drive) {
+  drive.given = true;
+  drive.drive_m = 2.0;
+  drive.distance_option = "--distance";
+  drive.firings_option = "--firings";
+  drive.window_option = "--window-m";
+  cmd->add_option("--distance", drive.drive_m,
+                  "a straight drive of this many metres before the last firing, fused, against "
+                  "the last firing alone")
+      ->capture_default_str();
+  cmd->add_option("--firings", drive.firings, "firings along the drive")->capture_default_str();
+  cmd->add_option("--odometry-noise", drive.odometry_noise,
+                  "odometry error FRAC,DEG_PER_M (length share, heading drift per metre)")
+      ->capture_default_str();
+  cmd->add_flag("--windowed", drive.windowed,
+                "search seed 001's window around a prior instead of the whole map");
+  cmd->add_option("--window-m", drive.window_m,
+                  "fuse the firings within this path length of the last (m)")
+      ->capture_default_str();
 }
 
 void run_drive_eval(const EvalArgs& args, const DriveArgs& drive,

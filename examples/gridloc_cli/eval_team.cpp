@@ -92,9 +92,10 @@ void print_table(const TeamEvalInputs& inputs, const TeamProtocolReport& report)
 
 }  // namespace
 
-void add_team_options(CLI::App* cmd, TeamEvalArgs& args) {
+void add_team_options(CLI::App* cmd, TeamEvalArgs& args, bool old_spelling) {
   cmd->add_option("--robots", args.robots,
-                  "--protocol team: comma-separated team sizes (each in 1..16)")
+                  std::string(old_spelling ? "--protocol team: " : "") +
+                      "comma-separated team sizes (each in 1..16)")
       ->delimiter(',')
       ->check(CLI::Range(1, 16))
       ->capture_default_str();

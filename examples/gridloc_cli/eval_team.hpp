@@ -23,8 +23,9 @@ struct TeamEvalInputs {
   int laser_beams = 360;
 };
 
-/// Registers --robots (it takes effect with --protocol team).
-void add_team_options(CLI::App* cmd, TeamEvalArgs& args);
+/// Registers --robots: on `gridloc eval team`, or with `old_spelling` on `gridloc eval` (it
+/// takes effect with --protocol team).
+void add_team_options(CLI::App* cmd, TeamEvalArgs& args, bool old_spelling);
 
 /// Runs the protocol and prints its table (or JSON), progress on stderr unless `quiet`.
 void run_team_eval(const TeamEvalArgs& args, const TeamEvalInputs& inputs, std::uint64_t seed,

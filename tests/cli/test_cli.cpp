@@ -210,8 +210,9 @@ TEST_F(Cli, EveryHelpOptionIsDocumented) {
     docs += read_file(page.path().string());
   }
   for (const char* command :
-       {"localize", "simulate", "demo", "eval", "relations", "map-from-log", "hallway", "heatmap",
-        "sectors", "disambiguate", "team", "track", "merge"}) {
+       {"localize", "simulate", "demo", "eval", "eval sonar", "eval laser", "eval drive",
+        "eval sectors", "eval disambiguation", "eval team", "relations", "map-from-log", "hallway",
+        "heatmap", "sectors", "disambiguate", "team", "track", "merge"}) {
     const CliRun help = run_cli(dir, std::string(command) + " --help");
     ASSERT_EQ(help.status, 0) << command;
     for (const std::string& line : lines(help.out)) {
