@@ -18,7 +18,7 @@ mkdir -p "$out"
 for b in "$@"; do
   log=$data/$b-corrected.log.gz
   [ -f "$out/$b.yaml" ] ||
-    "$gridloc" map-from-log --log "$log" --out "$out/$b.yaml" --part map >/dev/null
+    "$gridloc" map-from-log --log "$log" --map-out "$out/$b.yaml" --part map >/dev/null
   /usr/bin/time -f '%M' -o "$out/$b.rss" timeout 7200 "$gridloc" track --map "$out/$b.yaml" \
     --log "$log" --part held-out --global --truth-from-log --trials "$trials" \
     --drive-m "$drive" --odometry-noise "${NOISE:-0.02,1}" --seed 1 --json >"$out/$b.jsonl" 2>"$out/$b.err" || true

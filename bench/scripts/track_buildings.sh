@@ -40,7 +40,7 @@ PY
 }
 for b in "$@"; do
   [ -f "$out/$b.yaml" ] ||
-    "$gridloc" map-from-log --log "$data/acschaefer_ple/$b-corrected.log.gz" --out "$out/$b.yaml" \
+    "$gridloc" map-from-log --log "$data/acschaefer_ple/$b-corrected.log.gz" --map-out "$out/$b.yaml" \
       --part map >/dev/null
   row "$b" a --odometry-noise 0.02,1 --seed 1
   row "$b" b --odometry-noise 0.05,5 --seed 1

@@ -103,6 +103,9 @@ void print_summary(const nlohmann::json& s) {
 }
 
 void run(const MapFromLogArgs& args) {
+  if (args.out.empty()) {
+    throw Error("--map-out is required: the map_server YAML to write (old spelling --out)");
+  }
   LogMapOptions map_options = args.map;
   map_options.limits = limits();
   validate(map_options);  // before the log is read: a bad option is reported first
@@ -138,8 +141,9 @@ void add_map_from_log(CLI::App& app) {
   cmd->add_option("--log", args->log,
                   "CARMEN log, plain or gzip (FLASER / ROBOTLASER1 lines; - reads standard input)")
       ->required();
-  cmd->add_option("--out", args->out, "map_server YAML to write (the PGM goes beside it)")
-      ->required();
+  // --out is the old spelling (kept, out of --help): --out names a folder elsewhere.
+  cmd->add_option("--map-out", args->out, "map_server YAML to write (the PGM goes beside it)");
+  cmd->add_option("--out", args->out)->group("");
   cmd->add_option("--part", args->part,
                   "all: every scan; map: the even blocks of the split; held-out: the odd ones")
       ->check(CLI::IsMember({"all", "map", "held-out"}))

@@ -97,7 +97,11 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("--ring", args->ring, "sonar ring YAML (- reads standard input)")
       ->capture_default_str();
   cmd->add_option("--pose", args->pose, "robot pose x,y,theta (m, m, rad)")->required();
-  cmd->add_option("--out", args->out, "write the readings here instead of stdout");
+  // --out is the old spelling (kept, out of --help): --out names a folder elsewhere.
+  cmd->add_option("--readings-out", args->out,
+                  "write the readings JSON (with --scan, the scan CSV) to this file instead of "
+                  "stdout");
+  cmd->add_option("--out", args->out)->group("");
   cmd->add_option("--seed", args->sim.seed, "noise seed")->capture_default_str();
   cmd->add_option("--sigma", args->sim.range_sigma_m, "Gaussian range noise (m)")
       ->capture_default_str();

@@ -59,6 +59,31 @@ TEST(MapFromLogCli, DrawsAllScansIntoAMapServerMap) {
   EXPECT_GT(free, 7000u);     // most of the 9000 floor cells
 }
 
+// A file output is named after what it holds (--map-out, simulate's --readings-out); --out,
+// a folder in the other commands, is their old spelling and writes the same files.
+TEST(MapFromLogCli, FileOutputsHaveTheirOwnNamesAndTheOldOutStillWorks) {
+  TempDir dir;
+  const std::string log = dir.write("room.log", flaser_log(20, 2.0));
+  const std::string by_name = dir.file("new.yaml"), by_out = dir.file("old.yaml");
+  ASSERT_EQ(
+      run_cli(dir, "map-from-log --log " + quote(log) + " --map-out " + quote(by_name)).status, 0);
+  ASSERT_EQ(run_cli(dir, "map-from-log --log " + quote(log) + " --out " + quote(by_out)).status, 0);
+  EXPECT_EQ(test::read_file(dir.file("new.pgm")), test::read_file(dir.file("old.pgm")));
+  const test::CliRun help = run_cli(dir, "map-from-log --help");
+  EXPECT_NE(help.out.find("--map-out"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("  --out"), std::string::npos) << help.out;
+
+  const std::string map = test::maps_dir() + "/room_rect.yaml";
+  const std::string readings = dir.file("r.json"), old_readings = dir.file("old.json");
+  const std::string simulate = "simulate --map " + quote(map) + " --ring " +
+                               quote(test::maps_dir() + "/sensors/wheelchair_14.yaml") +
+                               " --pose 1,1,0 ";
+  ASSERT_EQ(run_cli(dir, simulate + "--readings-out " + quote(readings)).status, 0);
+  ASSERT_EQ(run_cli(dir, simulate + "--out " + quote(old_readings)).status, 0);
+  EXPECT_FALSE(test::read_file(readings).empty());
+  EXPECT_EQ(test::read_file(readings), test::read_file(old_readings));
+}
+
 TEST(MapFromLogCli, TheMapAndHeldOutPartsAlternate) {
   TempDir dir;
   // 40 scans 2 s apart: 30 s blocks of 15, 15 and 10 scans.
