@@ -36,7 +36,8 @@ struct LocalizeArgs {
   /// size (m), its best places refined at the map's cell; 0: the exact search of every pose;
   /// kAutoCoarse (the default): 0.2 m where the map's cell is 0.1 m or finer, else exact.
   double coarse = kAutoCoarse;
-  int coarse_places = CoarseToFineOptions{}.places;  ///< --coarse-places
+  int coarse_places = CoarseToFineOptions{}.places;                      ///< --coarse-places
+  double through_wall_ratio = CoarseToFineOptions{}.through_wall_ratio;  ///< --through-wall-ratio
   bool json = true;  // --json: JSON is the only output, the flag is accepted
 };
 
@@ -63,6 +64,10 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
   }
   if (args.coarse_places < 1 || args.coarse_places > kMaxPlaces) {
     throw Error("--coarse-places must lie in [1, 100], got " + std::to_string(args.coarse_places));
+  }
+  if (!(args.through_wall_ratio >= 0.0) || !std::isfinite(args.through_wall_ratio)) {
+    throw Error("--through-wall-ratio must be finite and >= 0 (0: no check), got " +
+                std::to_string(args.through_wall_ratio));
   }
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(
@@ -127,6 +132,7 @@ CoarseToFineOptions coarse_to_fine_options(const LocalizeArgs& args, double coar
   CoarseToFineOptions options;
   options.resolution = coarse;
   options.places = args.coarse_places;
+  options.through_wall_ratio = args.through_wall_ratio;
   return options;
 }
 
@@ -255,6 +261,11 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--coarse-places", args->coarse_places,
                   "coarse-to-fine: the coarse copy's best places refined at most (its winner and "
                   "the distinct places scoring --second-peak-floor of it)")
+      ->capture_default_str();
+  cmd->add_option("--through-wall-ratio", args->through_wall_ratio,
+                  "coarse-to-fine: an answer whose returns cross a wall of the map this share "
+                  "of its fit or more is not localized (JSON through_walls: that share); 0: no "
+                  "check")
       ->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include "gridloc/engine/correlation/coarse_to_fine.hpp"
@@ -229,6 +230,48 @@ TEST(CoarseToFine, AMapNarrowerThanAWindowIsSearchedWhole) {
   EXPECT_LE(std::hypot(e.pose.x - truth.x, e.pose.y - truth.y), 0.1);
 }
 
+// A scan that sees through a wall of the map is not localized: the apartment with a ring of
+// wall 0.5 m around the truth that the scan (simulated without it) does not see. Every
+// return beyond the ring crosses it; without the check the answer is the truth, localized.
+TEST(CoarseToFine, AScanSeeingThroughTheMapsWallsIsNotLocalized) {
+  const auto plain = laser_estimator("apartment_small");
+  Rng rng(11);
+  Trial t = trial_on(*plain, rng);
+  const auto clear = [&](const Pose2& p) {
+    for (double dy = -0.6; dy <= 0.6; dy += 0.05) {
+      for (double dx = -0.6; dx <= 0.6; dx += 0.05) {
+        const Pose2 local = plain->map().geometry.to_grid_frame({p.x + dx, p.y + dy, 0.0});
+        const Cell c = plain->map().geometry.cell_of(local.x, local.y);
+        if (plain->map().at(c.ix, c.iy) != CellState::Free) return false;
+      }
+    }
+    return true;
+  };
+  while (!clear(t.truth)) t = trial_on(*plain, rng);
+  OccupancyMap ringed = plain->map();
+  for (int k = 0; k < 360; ++k) {
+    const double a = k * std::numbers::pi / 180.0;
+    const Pose2 local = ringed.geometry.to_grid_frame(
+        {t.truth.x + 0.5 * std::cos(a), t.truth.y + 0.5 * std::sin(a), 0.0});
+    const Cell c = ringed.geometry.cell_of(local.x, local.y);
+    ringed.at(c.ix, c.iy) = CellState::Occupied;
+  }
+  const auto fine = std::make_shared<const CorrelationEstimator>(ringed, plain->options());
+  CoarseToFineOptions unchecked;
+  unchecked.through_wall_ratio = 0.0;
+  const Estimate trusting = CoarseToFineEstimator(fine, unchecked).estimate(t.observation, t.whole);
+  ASSERT_LE(std::hypot(trusting.pose.x - t.truth.x, trusting.pose.y - t.truth.y), 0.1);
+  ASSERT_EQ(trusting.verdict, Verdict::Localized);
+  EXPECT_TRUE(std::isnan(trusting.through_walls));
+  const Estimate checked = CoarseToFineEstimator(fine).estimate(t.observation, t.whole);
+  EXPECT_GT(checked.through_walls, 0.7 * checked.normalized_score);
+  EXPECT_EQ(checked.verdict, Verdict::NotLocalized);
+  // On the map as the scan saw it, the same check passes.
+  const Estimate seen = CoarseToFineEstimator(plain).estimate(t.observation, t.whole);
+  EXPECT_EQ(seen.verdict, Verdict::Localized);
+  EXPECT_LT(seen.through_walls, 0.05);
+}
+
 TEST(CoarseToFine, BadOptionsAreRefused) {
   const auto fine = laser_estimator("room_rect");
   CoarseToFineOptions options;
@@ -251,6 +294,12 @@ TEST(CoarseToFine, BadOptionsAreRefused) {
   options = {};
   options.half_xy_cells = std::nan("");
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"half_xy_cells"});
+  options = {};
+  options.through_wall_ratio = -0.1;
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"through_wall_ratio"});
+  options = {};
+  options.through_wall_margin_m = std::nan("");
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"through_wall_margin_m"});
   test::expect_error([&] { CoarseToFineEstimator(nullptr, {}); }, {"no fine estimator"});
   CorrelationOptions too_deep = fine->options();
   too_deep.max_bound_depth = 40;

@@ -12,6 +12,7 @@
 
 #include "confidence.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/sensors/through_walls.hpp"
 
 namespace gridloc {
 namespace {
@@ -100,6 +101,18 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
   return e;
 }
 
+/// Records the share of `scan`'s returns that cross a wall of `map` at the answer, and turns
+/// a `localized` answer `not localized` when it reaches through_wall_ratio of its fit.
+void check_walls(Estimate& e, const OccupancyMap& map, const RangeScan& scan,
+                 const CoarseToFineOptions& options) {
+  if (options.through_wall_ratio <= 0.0) return;
+  e.through_walls = through_walls(map, scan, e.pose, options.through_wall_margin_m).share();
+  if (e.verdict == Verdict::Localized &&
+      e.through_walls >= options.through_wall_ratio * e.normalized_score) {
+    e.verdict = Verdict::NotLocalized;
+  }
+}
+
 /// `pose` moved onto the nearest cell centre of `map` when it lies past the map's edge (the
 /// last cell of the coarse copy overhangs the map when its side is no whole number of them).
 Pose2 inside(const GridGeometry& map, const Pose2& pose) {
@@ -127,6 +140,10 @@ void validate(const CoarseToFineOptions& options, double fine_resolution) {
           options.ambiguity_ratio, "must lie in (0, 1]");
   require(options.ridge_ratio > 0.0 && options.ridge_ratio <= 1.0, "ridge_ratio",
           options.ridge_ratio, "must lie in (0, 1]");
+  require(std::isfinite(options.through_wall_ratio) && options.through_wall_ratio >= 0.0,
+          "through_wall_ratio", options.through_wall_ratio, "must be finite and >= 0");
+  require(std::isfinite(options.through_wall_margin_m) && options.through_wall_margin_m >= 0.0,
+          "through_wall_margin_m", options.through_wall_margin_m, "must be finite and >= 0");
   require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
           options.half_xy_cells, "must be finite and > 0");
   require(std::isfinite(options.half_theta_steps) && options.half_theta_steps > 0.0,
@@ -160,6 +177,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
   Estimate e = best_of(std::move(refined), fine_->options(), options_);
+  if (observation.scan) check_walls(e, fine_->map(), *observation.scan, options_);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;

@@ -83,6 +83,10 @@ struct Estimate {
   /// simulated reading within 10 cm + 5 % of the measured one, or both no echo). NaN for
   /// scans.
   double agreement = 0.0;
+  /// A laser scan's whole-map answer (CoarseToFineEstimator): the share of the scan's returns
+  /// whose beam crosses a wall of the map at `pose` (gridloc/sensors/through_walls.hpp); NaN
+  /// where it was not checked.
+  double through_walls = std::numeric_limits<double>::quiet_NaN();
   /// Covariance of (x, y, theta) in the world frame (m^2, m rad, rad^2), from the scores
   /// around the lattice winner read as a likelihood (examples/gridloc_cli/README.md, under
   /// `localize`; a sonar ring's at CorrelationOptions::ring_covariance_temperature); zero
