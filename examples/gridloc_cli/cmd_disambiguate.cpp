@@ -24,9 +24,9 @@
 #include "gridloc/engine/disambiguation/travel_bound.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
-#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "plot.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {

@@ -21,12 +21,12 @@
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
 #include "gridloc/sensors/sonar_model.hpp"
-#include "heatmap_plot.hpp"
 #include "heatmap_render.hpp"
 #include "heatmap_volume.hpp"
 #include "localization_args.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
+#include "plot.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {

@@ -13,8 +13,8 @@
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/sensors/log_map.hpp"
 #include "gridloc/sensors/log_split.hpp"
-#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
+#include "plot.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {

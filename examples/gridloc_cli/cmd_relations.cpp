@@ -15,9 +15,9 @@
 #include "gridloc/engine/evaluation/relations.hpp"
 #include "gridloc/engine/icp/robust_icp.hpp"
 #include "gridloc/grids/error.hpp"
-#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "options.hpp"
+#include "plot.hpp"
 #include "relations_render.hpp"
 #include "stdin_input.hpp"
 

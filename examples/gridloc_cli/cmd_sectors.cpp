@@ -16,9 +16,9 @@
 #include "gridloc/engine/sectors/visibility_sectors.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
-#include "heatmap_plot.hpp"
 #include "limit_options.hpp"
 #include "output_files.hpp"
+#include "plot.hpp"
 #include "sectors_render.hpp"
 #include "stdin_input.hpp"
 

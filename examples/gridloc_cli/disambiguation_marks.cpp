@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli::disambiguation_marks {
 

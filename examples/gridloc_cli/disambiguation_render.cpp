@@ -13,7 +13,7 @@
 #include "disambiguation_marks.hpp"
 #include "gridloc/engine/disambiguation/region.hpp"
 #include "gridloc/grids/error.hpp"
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli {
 namespace {

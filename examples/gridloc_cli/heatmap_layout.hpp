@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
-#include "heatmap_plot.hpp"
 #include "heatmap_render.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli::layout {
 

@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "heatmap_layout.hpp"
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "gridloc/grids/error.hpp"
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli {
 namespace {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli::team_marks {
 namespace {

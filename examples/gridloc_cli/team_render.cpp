@@ -15,7 +15,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "heatmap_layout.hpp"
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 #include "team_marks.hpp"
 
 namespace gridloc::cli {

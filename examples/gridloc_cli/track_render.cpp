@@ -7,7 +7,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "heatmap_layout.hpp"
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 namespace gridloc::cli {
 namespace {

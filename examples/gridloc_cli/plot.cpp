@@ -1,4 +1,4 @@
-#include "heatmap_plot.hpp"
+#include "plot.hpp"
 
 #include "heatmap_layout.hpp"
 
