@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
-#include "gridloc/engine/evaluation/trials.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/sensors/free_pose.hpp"
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_ring.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"

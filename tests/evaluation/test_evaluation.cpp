@@ -1,5 +1,4 @@
-// Tests of engine/src/evaluation/sonar_protocol.cpp: seed 001's evaluation protocol, and of
-// trials.cpp's free-pose sampling.
+// Tests of engine/src/evaluation/sonar_protocol.cpp: seed 001's evaluation protocol.
 #include "gridloc/engine/evaluation/sonar_protocol.hpp"
 
 #include <gtest/gtest.h>
@@ -165,48 +164,6 @@ TEST(Evaluation, IcpNeedsTheLaserProtocol) {
   o.configurations = {{LocalModel::Oriented, GlobalModel::Thinned, EstimatorKind::Sectors}};
   test::expect_error([&] { run_evaluation(bundled_rooms(), ring, o); },
                      {"sectors", "polygon maps", "run_sector_evaluation"});
-}
-
-TEST(SampleFreePose, FootprintAndClearanceAreFree) {
-  const SonarRing ring = load_sonar_ring(test::ring_path());
-  for (const EvalMap& m : bundled_rooms()) {
-    const GridGeometry& g = m.map.geometry;
-    Rng rng(9);
-    for (int i = 0; i < 25; ++i) {
-      const Pose2 p = sample_free_pose(m.map, ring, 0.25, rng);
-      EXPECT_GT(p.theta, -std::numbers::pi - 1e-12);
-      EXPECT_LE(p.theta, std::numbers::pi + 1e-12);
-      // Every cell whose centre lies within the 0.25 m clearance of the footprint (a 1.10 x
-      // 0.70 m rectangle) is free.
-      const double c = std::cos(p.theta), s = std::sin(p.theta);
-      for (int iy = 0; iy < g.height; ++iy) {
-        for (int ix = 0; ix < g.width; ++ix) {
-          const Eigen::Vector2d cc = g.cell_center(ix, iy);
-          const Pose2 w = g.to_world_frame({cc.x(), cc.y(), 0.0});
-          const double dx = w.x - p.x, dy = w.y - p.y;
-          const double fx = c * dx + s * dy, fy = -s * dx + c * dy;
-          const double ox = std::max(std::abs(fx) - 0.55, 0.0);
-          const double oy = std::max(std::abs(fy) - 0.35, 0.0);
-          if (std::hypot(ox, oy) <= 0.25) {
-            ASSERT_EQ(m.map.at(ix, iy), CellState::Free)
-                << m.name << " pose (" << p.x << ", " << p.y << ", " << p.theta << ") cell (" << ix
-                << ", " << iy << ")";
-          }
-        }
-      }
-    }
-  }
-}
-
-TEST(SampleFreePose, ThrowsWhenNoPoseFits) {
-  const SonarRing ring = load_sonar_ring(test::ring_path());
-  GridGeometry g;
-  g.resolution = 0.1;
-  g.width = 8;
-  g.height = 8;
-  const OccupancyMap tiny(g, CellState::Free);  // 0.8 m square: the 1.1 m chair cannot fit
-  Rng rng(1);
-  test::expect_error([&] { sample_free_pose(tiny, ring, 0.25, rng); }, {"no free pose"});
 }
 
 TEST(Evaluation, ModelNames) {

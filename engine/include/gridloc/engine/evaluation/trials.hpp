@@ -5,19 +5,11 @@
 /// protocol (the same seed gives the same trials).
 #include "gridloc/engine/estimate.hpp"
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/sensors/free_pose.hpp"  // sample_free_pose, pose_is_free: the trials' poses
 #include "gridloc/sensors/rng.hpp"
 #include "gridloc/sensors/sonar_ring.hpp"
 
 namespace gridloc {
-
-/// Draws a pose uniformly in the map whose footprint, grown by `clearance`, covers only free
-/// cells. Throws gridloc::Error when none is found in many attempts.
-Pose2 sample_free_pose(const OccupancyMap& map, const SonarRing& ring, double clearance, Rng& rng);
-
-/// Whether the footprint of `ring` at world pose `pose`, grown by `clearance`, covers only
-/// free cells: the test sample_free_pose draws against.
-bool pose_is_free(const OccupancyMap& map, const SonarRing& ring, const Pose2& pose,
-                  double clearance);
 
 /// `map` with 2-4 boxes (0.3-0.8 m) added on free cells at least `keep_clear` m from
 /// `keep`: furniture the known map does not have.
