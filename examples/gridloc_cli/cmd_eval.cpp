@@ -128,6 +128,7 @@ void add_grid_protocols(CLI::App* eval) {
                  add_search_options(cmd, c.args, true);
                  add_estimator_option(cmd, c.args, estimators);
                  add_output_options(cmd, c.args, true);
+                 add_calibration_plot_option(cmd, c.args);
                  read_stdin_at_most_once(cmd, {{"--maps", true}, {"--ring"}});
                });
   add_protocol(eval, EvalProtocol::Laser,
@@ -139,6 +140,7 @@ void add_grid_protocols(CLI::App* eval) {
                  add_search_options(cmd, c.args, true);
                  add_estimator_option(cmd, c.args, estimators);
                  add_output_options(cmd, c.args, true);
+                 add_calibration_plot_option(cmd, c.args);
                  read_stdin_at_most_once(cmd, {{"--maps", true}});
                });
   add_protocol(eval, EvalProtocol::Drive,
@@ -223,6 +225,7 @@ void add_old_spelling(CLI::App* cmd) {
   add_trial_options(cmd, args, "random poses per map");
   add_search_options(cmd, args, true);
   add_output_options(cmd, args, true);
+  add_calibration_plot_option(cmd, args);
   add_sonar_protocol_flags(cmd, args);
   add_estimator_option(cmd, args,
                        "compare these estimators on the same trials: comma-separated "

@@ -37,6 +37,14 @@ void add_output_options(CLI::App* cmd, EvalArgs& args, bool trials_out) {
   set_group_from(cmd, first, "Output");
 }
 
+void add_calibration_plot_option(CLI::App* cmd, EvalArgs& args) {
+  const std::size_t first = cmd->get_options().size();
+  cmd->add_option("--calibration-plot", args.calibration_plot,
+                  "write F.png: for each configuration, the share of its localized answers "
+                  "whose position error lies within the covariance's p ellipse, against p");
+  set_group_from(cmd, first, "Output");
+}
+
 void add_ring_options(CLI::App* cmd, EvalArgs& args, bool noise) {
   const std::size_t first = cmd->get_options().size();
   cmd->add_option("--ring", args.ring, "sonar ring YAML (- reads standard input)")

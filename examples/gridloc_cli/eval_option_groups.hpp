@@ -19,6 +19,9 @@ void add_trial_options(CLI::App* cmd, EvalArgs& args, const std::string& help);
 /// --json and --quiet, and with `trials_out` --trials-out; group "Output".
 void add_output_options(CLI::App* cmd, EvalArgs& args, bool trials_out);
 
+/// --calibration-plot (seed 001's protocol: sonar, laser); group "Output".
+void add_calibration_plot_option(CLI::App* cmd, EvalArgs& args);
+
 /// --ring, and with `noise` --noise (realistic | none); group "Sonar ring".
 void add_ring_options(CLI::App* cmd, EvalArgs& args, bool noise);
 

@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iostream>
 
+#include "calibration_render.hpp"
 #include "commands.hpp"
+#include "gridloc/engine/evaluation/calibration.hpp"
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc::cli {
@@ -29,7 +31,33 @@ std::string decimal_or_dash(double v) {
   return buf;
 }
 
+/// A configuration's name in the table and the plot's legend.
+std::string configuration_name(const EvalConfiguration& c) {
+  if (c.estimator == EstimatorKind::Icp) return to_string(c.estimator);
+  return to_string(c.estimator) + ", " + to_string(c.local) + " + " + to_string(c.global);
+}
+
 }  // namespace
+
+void write_calibration(const std::string& path, const EvalReport& report,
+                       const std::string& title) {
+  const std::vector<double> levels = coverage_levels();
+  std::vector<CoverageCurve> curves;
+  for (std::size_t c = 0; c < report.configurations.size(); ++c) {
+    std::vector<CalibrationSample> samples;
+    for (const TrialRecord& record : report.records) {
+      if (record.configuration != c) continue;
+      const Estimate& e = record.estimate;
+      samples.push_back({e.pose, e.covariance, record.truth, e.verdict == Verdict::Localized});
+    }
+    const ConfigurationResult& result = report.configurations[c];
+    curves.push_back({configuration_name(result.configuration) + " (" +
+                          std::to_string(result.calibration.localized) + " localized)",
+                      position_coverage(samples, levels)});
+  }
+  write_calibration_plot(path, "Calibration: position errors within the covariance's p ellipse",
+                         title, levels, curves);
+}
 
 void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& options) {
   std::ofstream out(path);

@@ -27,12 +27,17 @@ struct EvalArgs {
   bool noisy = false;
   bool echo_filter = false;
   std::string trials_out;
-  std::string estimators;  ///< empty: the correlation over the four model configurations
+  std::string calibration_plot;  ///< PNG of the coverage curves, or empty
+  std::string estimators;        ///< empty: the correlation over the four model configurations
   LaserProtocol laser;
 };
 
 /// One line per trial and configuration: what calibration studies need.
 void write_trials(const std::string& path, const EvalReport& report, const EvalOptions& options);
+
+/// The calibration plot of every configuration's `localized` answers (issue 19):
+/// calibration_render.hpp, `title` naming the run.
+void write_calibration(const std::string& path, const EvalReport& report, const std::string& title);
 
 /// Sonars the echo filter rejected, per trial (each trial's readings serve every configuration).
 double mean_rejected_sonars(const EvalReport& report);

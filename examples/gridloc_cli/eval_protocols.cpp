@@ -155,6 +155,13 @@ void run_seed_001(const EvalArgs& args, const std::vector<std::string>& files) {
       run_evaluation(maps, ring, options, progress_line("eval", what, args.quiet));
 
   if (!args.trials_out.empty()) write_trials(args.trials_out, report, options);
+  if (!args.calibration_plot.empty()) {
+    write_calibration(args.calibration_plot, report,
+                      std::string("gridloc eval ") + (args.laser.enabled ? "laser" : "sonar") +
+                          (args.noisy ? " --noisy" : "") + ": " + std::to_string(maps.size()) +
+                          " maps x " + std::to_string(args.trials) + " trials, seed " +
+                          std::to_string(args.seed));
+  }
   const double rejected = mean_rejected_sonars(report);
   if (args.json) return print_json(args, maps, report, rejected);
   print_table_title(args, options, ring, maps.size(), report, rejected);

@@ -90,5 +90,21 @@ TEST_F(Cli, EvalHelpListsTheProtocolsEachWithOnlyItsOptions) {
   expect_cli_error(run_cli(dir, "eval disambiguation --sensor ir"), "--sensor");
 }
 
+// --calibration-plot draws each configuration's coverage curve (issue 19) into a PNG.
+TEST_F(Cli, TheCalibrationPlotIsAPng) {
+  const std::string png = dir.file("calibration.png");
+  const CliRun r = run_cli(dir,
+                           "eval sonar --trials 3 --maps room_rect --quiet --json "
+                           "--calibration-plot " +
+                               quote(png));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_file(png).substr(1, 3), "PNG");
+  expect_cli_error(run_cli(dir,
+                           "eval laser --trials 1 --maps room_rect --quiet "
+                           "--calibration-plot " +
+                               quote(dir.file("none/c.png"))),
+                   "c.png");
+}
+
 }  // namespace
 }  // namespace gridloc

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
 #include <numbers>
@@ -98,6 +99,48 @@ TEST(Calibration, TheSummaryReadsTheLocalizedAnswersOnly) {
   EXPECT_EQ(none.localized, 0);
   EXPECT_TRUE(std::isnan(none.nees_mean));
   EXPECT_TRUE(std::isnan(none.coverage_2sigma));
+}
+
+// Errors drawn from the reported covariance itself fill each p ellipse a share p of the
+// time; a covariance four times too large (padded) covers more, one four times too small
+// (optimistic) less.
+TEST(Calibration, ACoverageCurveFollowsTheDiagonalWhenCalibrated) {
+  Eigen::Matrix3d covariance;
+  covariance << 0.04, 0.012, 0.0, 0.012, 0.01, 0.0, 0.0, 0.0, 0.001;  // a corridor along x
+  const Eigen::Matrix2d root = covariance.topLeftCorner<2, 2>().llt().matrixL();
+  std::mt19937_64 rng(19);
+  std::normal_distribution<double> normal;
+  std::vector<CalibrationSample> calibrated, padded, optimistic;
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector2d e = root * Eigen::Vector2d(normal(rng), normal(rng));
+    const Pose2 estimate{e.x(), e.y(), 0.0};
+    calibrated.push_back({estimate, covariance, {0, 0, 0}, true});
+    padded.push_back({estimate, 4.0 * covariance, {0, 0, 0}, true});
+    optimistic.push_back({estimate, 0.25 * covariance, {0, 0, 0}, true});
+  }
+  calibrated.push_back({{9.0, 0.0, 0.0}, covariance, {0, 0, 0}, false});  // not read
+  const std::vector<double> levels = coverage_levels();
+  ASSERT_EQ(levels.size(), 20u);
+  EXPECT_DOUBLE_EQ(levels.front(), 0.05);
+  EXPECT_DOUBLE_EQ(levels.back(), 0.99);
+  const std::vector<double> fair = position_coverage(calibrated, levels);
+  const std::vector<double> wide = position_coverage(padded, levels);
+  const std::vector<double> narrow = position_coverage(optimistic, levels);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    EXPECT_NEAR(fair[k], levels[k], 0.015) << levels[k];
+    if (levels[k] < 0.99) {
+      EXPECT_GT(wide[k], levels[k] + 0.04) << levels[k];  // 1 - (1 - p)^4
+    }
+    EXPECT_LT(narrow[k], 0.75 * levels[k]) << levels[k];  // 1 - (1 - p)^(1/4)
+  }
+  // The 2-sigma ellipse holds 1 - exp(-2) = 86.5 % of a calibrated 2-D Gaussian's errors.
+  EXPECT_NEAR(position_coverage(calibrated, {1.0 - std::exp(-2.0)})[0], 0.865, 0.015);
+  // No covariance: outside every ellipse; nothing localized: NaN.
+  std::vector<CalibrationSample> none = {
+      {{0.0, 0.0, 0.0}, Eigen::Matrix3d::Zero(), {0, 0, 0}, true}};
+  EXPECT_DOUBLE_EQ(position_coverage(none, {0.5})[0], 0.0);
+  none[0].localized = false;
+  EXPECT_TRUE(std::isnan(position_coverage(none, {0.5})[0]));
 }
 
 }  // namespace

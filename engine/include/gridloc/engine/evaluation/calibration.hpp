@@ -50,4 +50,17 @@ struct CalibrationSummary {
 /// The calibration of the `localized` answers among `samples`.
 CalibrationSummary summarize_calibration(const std::vector<CalibrationSample>& samples);
 
+/// The nominal probabilities a coverage curve is read at: 0.05, 0.10, ..., 0.95 and 0.99.
+std::vector<double> coverage_levels();
+
+/// For each nominal probability p of `probabilities` (each in (0, 1)), the share of the
+/// `localized` samples whose position error lies within the covariance's p ellipse: its
+/// squared Mahalanobis distance over (x, y) at most -2 ln(1 - p), the chi-squared quantile
+/// with 2 degrees of freedom. p itself when the covariance is calibrated, above p when it
+/// is padded, below when it is optimistic (a calibration plot's curve). A sample without a
+/// positive definite xy block counts as outside every ellipse. NaN for every p when no
+/// sample is `localized`.
+std::vector<double> position_coverage(const std::vector<CalibrationSample>& samples,
+                                      const std::vector<double>& probabilities);
+
 }  // namespace gridloc
