@@ -153,6 +153,10 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "a sonar ring's answer reports the covariance at this temperature instead "
                   "(0 = --covariance-temperature); no verdict changes with it")
       ->capture_default_str();
+  cmd->add_option("--scan-quantization-share", scan_quantization_share,
+                  "a scan's refined pose reports this share of the lattice's quantization "
+                  "variance (1 = all of it, as before); no verdict changes with it")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -195,6 +199,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.covariance_cells = covariance_cells;
   options.covariance_temperature = covariance_temperature;
   options.ring_covariance_temperature = ring_covariance_temperature;
+  options.scan_quantization_share = scan_quantization_share;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   if (free_samples < 1 || free_samples > 1000) {
     throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));

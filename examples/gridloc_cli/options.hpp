@@ -43,6 +43,7 @@ struct SearchArgs {
   int covariance_cells = CorrelationOptions{}.covariance_cells;
   double covariance_temperature = CorrelationOptions{}.covariance_temperature;
   double ring_covariance_temperature = CorrelationOptions{}.ring_covariance_temperature;
+  double scan_quantization_share = CorrelationOptions{}.scan_quantization_share;
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and

@@ -158,6 +158,50 @@ TEST(PeakCovariance, ARingReportsItsOwnTemperatureAndNoVerdictChanges) {
   }
 }
 
+// A scan's refined pose reports scan_quantization_share of the lattice's quantization
+// variance (step^2 / 12 per axis): the difference from keeping all of it is exactly the rest,
+// and the pose, the spread and the verdict stay; a sonar ring keeps all of it.
+TEST(PeakCovariance, AScanReportsItsShareOfTheQuantizationVariance) {
+  const OccupancyMap map = corridor();
+  const Pose2 truth{6.0, 1.04, 0.0};
+  Observation scan;
+  scan.scan = simulate_scan(map, truth, 180, 4.0, 0.01, 7);
+  SearchWindow w;
+  w.center = {6.1, 1.05, 0.05};
+  CorrelationOptions all, half;
+  all.reach_m = half.reach_m = 4.0;
+  all.scan_quantization_share = 1.0;
+  half.scan_quantization_share = 0.5;
+  const Estimate a = CorrelationEstimator(map, all).estimate(scan, w);
+  const Estimate b = CorrelationEstimator(map, half).estimate(scan, w);
+  EXPECT_EQ(a.pose.x, b.pose.x);
+  EXPECT_EQ(a.confidence_parts.spread_m, b.confidence_parts.spread_m);
+  EXPECT_EQ(a.verdict, b.verdict);
+  const double res = all.resolution, step = w.step_theta;  // the window's lattice
+  Eigen::Matrix3d rest = Eigen::Matrix3d::Zero();
+  rest.diagonal() << 0.5 * res * res / 12.0, 0.5 * res * res / 12.0, 0.5 * step * step / 12.0;
+  EXPECT_TRUE((a.covariance - b.covariance).isApprox(rest, 1e-9))
+      << a.covariance - b.covariance << "\n"
+      << rest;
+  // Not refined: the pose is a lattice pose, its whole quantization error stays.
+  all.refine = half.refine = false;
+  EXPECT_TRUE(CorrelationEstimator(map, all).estimate(scan, w).covariance.isApprox(
+      CorrelationEstimator(map, half).estimate(scan, w).covariance, 1e-12));
+  // A ring keeps all of it.
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Observation firing{simulate_sonar(map, ring, truth)};
+  all.refine = half.refine = true;
+  all.reach_m = half.reach_m = 0.0;
+  EXPECT_TRUE(CorrelationEstimator(map, ring, all)
+                  .estimate(firing, w)
+                  .covariance.isApprox(
+                      CorrelationEstimator(map, ring, half).estimate(firing, w).covariance, 1e-12));
+  for (double bad : {-0.1, 1.5, std::nan("")}) {
+    half.scan_quantization_share = bad;
+    test::expect_error([&] { CorrelationEstimator(map, ring, half); }, {"scan_quantization_share"});
+  }
+}
+
 TEST(PeakCovariance, OffMeansZero) {
   const OccupancyMap map = load_ros_map(test::map_path("room_l"));
   const SonarRing ring = load_sonar_ring(test::ring_path());

@@ -47,6 +47,7 @@ void check(const CorrelationOptions& options) {
   }
   require_non_negative(options.ring_covariance_temperature, "correlation options",
                        "ring_covariance_temperature");
+  require_share(options.scan_quantization_share, "correlation options", "scan_quantization_share");
   validate(options.scan);
   options.field.validate();
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws

@@ -264,6 +264,19 @@ double reported_temperature(const Observation& observation, const CorrelationOpt
                                                            : options.covariance_temperature;
 }
 
+/// A scan's reported covariance with only scan_quantization_share of the lattice's
+/// quantization variance (peak_covariances adds all of it) when its pose is refined.
+void share_quantization(Eigen::Matrix3d& covariance, const Observation& observation,
+                        const Lattice& lattice, const CorrelationOptions& options) {
+  const bool ring = !observation.scan && !observation.points;
+  if (ring || !options.refine) return;
+  const double drop = 1.0 - options.scan_quantization_share;
+  const double res = options.resolution;
+  covariance(0, 0) -= drop * res * res / 12.0;  // isotropic in x, y: the map's yaw keeps it
+  covariance(1, 1) -= drop * res * res / 12.0;
+  covariance(2, 2) -= drop * lattice.step_theta * lattice.step_theta / 12.0;
+}
+
 /// Estimate::stats of the searches, timed since `start`.
 void fill_stats(Estimate& e, const SearchResult& result, int levels,
                 std::chrono::steady_clock::time_point start) {
@@ -378,6 +391,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
         {options_.covariance_temperature, reported_temperature(observation, options_)});
     e.confidence_parts.spread_m = position_spread(c[0]);
     e.covariance = c[1];
+    share_quantization(e.covariance, observation, lattice, options_);
   }
   judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
   fill_stats(e, search.result, level_count, start);
