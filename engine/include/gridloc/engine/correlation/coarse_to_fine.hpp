@@ -45,9 +45,9 @@ struct CoarseToFineOptions {
   /// A `localized` answer to a laser scan whose returns cross a wall of the map (more than
   /// through_wall_margin_m before their end) this share of its fit or more
   /// (Estimate::through_walls >= through_wall_ratio * normalized_score) is `not localized`:
-  /// the scan contradicts the map there nearly as much as it fits it. On 520 `localized`
-  /// held-out scans of 11 real buildings (seeds 1-6, 10 each) 0.7 turned 10 of the 18 wrong
-  /// ones and 2 of the 502 right ones (README, issue 35); 0: no check.
+  /// the scan contradicts the map there nearly as much as it fits it. On 660 held-out scans
+  /// of 11 real buildings (seeds 1-6, 10 each) 0.7 turned 10 of the 18 wrong `localized`
+  /// answers and 5 of the 502 right ones (README, issue 35); 0: no check.
   double through_wall_ratio = 0.7;
   double through_wall_margin_m = 0.3;  ///< the pose's and the map's blur (m)
 };
