@@ -71,12 +71,12 @@ std::string new_spelling(CLI::App& cmd, EvalProtocol protocol) {
                                                              {"protocol", ""},
                                                              {"laser", ""}};
   std::string line = "gridloc eval " + protocol_name(protocol);
+  const CLI::App* protocol_command = cmd.get_subcommand(protocol_name(protocol));
   for (const CLI::Option* option : cmd.get_options()) {
     if (option->count() == 0 || option->get_lnames().empty()) continue;
     const std::string& long_name = option->get_lnames().front();
     const auto rename = renamed.find(long_name);
     const std::string name = rename == renamed.end() ? "--" + long_name : rename->second;
-    const CLI::App* protocol_command = cmd.get_subcommand(protocol_name(protocol));
     if (name.empty() || !protocol_command->get_option_no_throw(name)) continue;
     line += " " + name;
     if (option->get_expected_max() == 0) continue;  // a flag
