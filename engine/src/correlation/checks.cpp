@@ -16,52 +16,33 @@ namespace correlation_detail {
 
 /// Checks the options on their own; throws gridloc::Error naming the first that is wrong.
 void check(const CorrelationOptions& options) {
-  if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
-    throw Error("correlation options: resolution must be > 0, got " +
-                std::to_string(options.resolution));
-  }
-  if (options.levels < 1 || options.levels > 8) {
-    throw Error("correlation options: levels must be in [1, 8], got " +
-                std::to_string(options.levels));
-  }
-  if (options.keep < 1) throw Error("correlation options: keep must be >= 1");
-  if (options.hypotheses < 1 || options.hypotheses > 100) {
-    throw Error("correlation options: hypotheses must be in [1, 100], got " +
-                std::to_string(options.hypotheses));
-  }
-  if (!(options.second_peak_floor >= 0.0 && options.second_peak_floor < 1.0)) {
-    throw Error("correlation options: second_peak_floor must lie in [0, 1), got " +
-                std::to_string(options.second_peak_floor));
-  }
-  if (options.max_bound_depth < 0 || options.max_bound_depth > 31) {
-    throw Error("correlation options: max_bound_depth must be in [0, 31], got " +
-                std::to_string(options.max_bound_depth));
-  }
-  if (options.covariance_cells < 0 || options.covariance_cells > 20) {
-    throw Error("correlation options: covariance_cells must be in [0, 20], got " +
-                std::to_string(options.covariance_cells));
-  }
-  if (!(options.covariance_temperature > 0.0) || !std::isfinite(options.covariance_temperature)) {
-    throw Error("correlation options: covariance_temperature must be finite and > 0, got " +
-                std::to_string(options.covariance_temperature));
-  }
-  require_non_negative(options.ring_covariance_temperature, "correlation options",
-                       "ring_covariance_temperature");
-  require_share(options.scan_quantization_share, "correlation options", "scan_quantization_share");
+  constexpr std::string_view owner = "correlation options";
+  require_option(options.resolution > 0.0 && std::isfinite(options.resolution), owner, "resolution",
+                 options.resolution, "must be > 0");
+  require_option(options.levels >= 1 && options.levels <= 8, owner, "levels", options.levels,
+                 "must be in [1, 8]");
+  require_option(options.keep >= 1, owner, "keep", options.keep, "must be >= 1");
+  require_option(options.hypotheses >= 1 && options.hypotheses <= 100, owner, "hypotheses",
+                 options.hypotheses, "must be in [1, 100]");
+  require_option(options.second_peak_floor >= 0.0 && options.second_peak_floor < 1.0, owner,
+                 "second_peak_floor", options.second_peak_floor, "must lie in [0, 1)");
+  require_option(options.max_bound_depth >= 0 && options.max_bound_depth <= 31, owner,
+                 "max_bound_depth", options.max_bound_depth, "must be in [0, 31]");
+  require_option(options.covariance_cells >= 0 && options.covariance_cells <= 20, owner,
+                 "covariance_cells", options.covariance_cells, "must be in [0, 20]");
+  require_option(
+      options.covariance_temperature > 0.0 && std::isfinite(options.covariance_temperature), owner,
+      "covariance_temperature", options.covariance_temperature, "must be finite and > 0");
+  require_non_negative(options.ring_covariance_temperature, owner, "ring_covariance_temperature");
+  require_share(options.scan_quantization_share, owner, "scan_quantization_share");
   validate(options.scan);
   options.field.validate();
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws
   // outside it (issue 14: --arc-depth 1e11 crashed, 1e300 blamed the padding).
-  if (!(options.sonar.arc_depth_cells >= 0.0 && options.sonar.arc_depth_cells <= 2.0)) {
-    std::ostringstream m;
-    m << "correlation options: arc depth must lie in [0, 2] cells, got "
-      << options.sonar.arc_depth_cells;
-    throw Error(m.str());
-  }
-  if (!(options.budget_ms >= 0.0) || !std::isfinite(options.budget_ms)) {
-    throw Error("correlation options: budget_ms must be finite and >= 0, got " +
-                std::to_string(options.budget_ms));
-  }
+  require_option(options.sonar.arc_depth_cells >= 0.0 && options.sonar.arc_depth_cells <= 2.0,
+                 owner, "arc depth", options.sonar.arc_depth_cells, "must lie in [0, 2] cells");
+  require_option(options.budget_ms >= 0.0 && std::isfinite(options.budget_ms), owner, "budget_ms",
+                 options.budget_ms, "must be finite and >= 0");
   // Options only branch and bound can honour are errors elsewhere, not silently ignored.
   if (options.strategy != SearchStrategy::BranchAndBound &&
       (options.budget_ms > 0.0 || options.heading_intervals)) {
@@ -69,10 +50,8 @@ void check(const CorrelationOptions& options) {
                 (options.budget_ms > 0.0 ? "budget_ms" : "heading_intervals") +
                 " needs the branch-and-bound strategy");
   }
-  if (options.threads < 1 || options.threads > 256) {
-    throw Error("correlation options: threads must be in [1, 256], got " +
-                std::to_string(options.threads));
-  }
+  require_option(options.threads >= 1 && options.threads <= 256, owner, "threads", options.threads,
+                 "must be in [1, 256]");
   options.limits.validate();
 }
 
@@ -112,10 +91,8 @@ void check_resources(const GridGeometry& map, const CorrelationOptions& options,
 /// What the global grids' padding covers (m): options.reach_m or the ring's reach, whichever
 /// is larger; throws gridloc::Error for a bad reach_m or a reach of a million cells or more.
 double padding_reach(const CorrelationOptions& options, const SonarRing& ring) {
-  if (!(options.reach_m >= 0.0) || !std::isfinite(options.reach_m)) {
-    throw Error("correlation options: reach_m must be >= 0, got " +
-                std::to_string(options.reach_m));
-  }
+  require_option(options.reach_m >= 0.0 && std::isfinite(options.reach_m), "correlation options",
+                 "reach_m", options.reach_m, "must be >= 0");
   const double reach = std::max(options.reach_m, ring.sonars.empty() ? 0.0 : ring.reach());
   if (reach / options.resolution > 1e6) {  // the padding alone would be 2 million cells wide
     std::ostringstream m;
