@@ -74,11 +74,14 @@ if [ -f "$llvm_lib/libarcher.so" ]; then export OMP_TOOL_LIBRARIES="$llvm_lib/li
 #                                                               the office's sectors, 24 fixes)
 #   Cli.EvalOnPolygonMapsComparesSectorsAndCorrelation          (> 170 s CPU, not finished:
 #                                                               the sector protocol, as above)
+#   Cli.EachProtocolsCommandGivesTheOldSpellingsResults         (> 10 min, not finished: six
+#                                                               protocols run twice, the sector
+#                                                               one among them)
 # and one check that pins a measured borderline outcome, which this build (clang -O1) does
 # not reproduce (no sanitizer report; the correlation's false fixes are 0 here, 1 with the
 # Release g++ build):
 #   SectorEvaluation.EveryEstimatorSeesTheSameTrials
-asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials|SectorLocalization\.TheSkeletonMatchLocalizesPartialViews|Cli\.EvalOnPolygonMapsComparesSectorsAndCorrelation)$'
+asan_exclude='^(install_and_find_package|DriveProtocol\.ADriveLocalizesAtLeastAsOftenAsTheLastFiring|SampleFreePose\.ThrowsWhenNoPoseFits|Evaluation\.OrientedThinnedBeatsTurnedRaw|SectorEvaluation\.EveryEstimatorSeesTheSameTrials|SectorLocalization\.TheSkeletonMatchLocalizesPartialViews|Cli\.EvalOnPolygonMapsComparesSectorsAndCorrelation|Cli\.EachProtocolsCommandGivesTheOldSpellingsResults)$'
 
 run_asan() {
   echo "== sanitizers: AddressSanitizer + UndefinedBehaviorSanitizer (build-asan)"
