@@ -11,6 +11,7 @@
 #include "eval_option_groups.hpp"
 #include "eval_protocols.hpp"
 #include "gridloc/grids/error.hpp"
+#include "old_spelling.hpp"
 #include "stdin_input.hpp"
 
 namespace gridloc::cli {
@@ -28,18 +29,6 @@ std::shared_ptr<EvalCommandArgs> default_args() {
   command->args.ring = data_dir() + "/sensors/wheelchair_14.yaml";
   return command;
 }
-
-/// The old spelling's options, under this heading: the help leaves them out.
-constexpr const char* kOldSpelling = "Old spelling";
-
-class EvalHelp : public CLI::Formatter {
- public:
-  std::string make_group(std::string group, bool is_positional,
-                         std::vector<const CLI::Option*> options) const override {
-    if (group == kOldSpelling) return {};
-    return CLI::Formatter::make_group(std::move(group), is_positional, std::move(options));
-  }
-};
 
 const std::string kGridMapsHelp =
     "comma-separated bundled map names, YAML paths or OctoMap .bt/.ot paths (one may be -: "
@@ -265,7 +254,7 @@ void add_eval(CLI::App& app) {
   add_grid_protocols(cmd);
   add_other_protocols(cmd);
   add_old_spelling(cmd);
-  cmd->formatter(std::make_shared<EvalHelp>());
+  hide_old_spellings(cmd);
 }
 
 }  // namespace gridloc::cli

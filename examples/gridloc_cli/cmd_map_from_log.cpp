@@ -14,6 +14,7 @@
 #include "gridloc/sensors/log_map.hpp"
 #include "gridloc/sensors/log_split.hpp"
 #include "limit_options.hpp"
+#include "old_spelling.hpp"
 #include "plot.hpp"
 #include "stdin_input.hpp"
 
@@ -143,7 +144,8 @@ void add_map_from_log(CLI::App& app) {
       ->required();
   // --out is the old spelling (kept, out of --help): --out names a folder elsewhere.
   cmd->add_option("--map-out", args->out, "map_server YAML to write (the PGM goes beside it)");
-  cmd->add_option("--out", args->out)->group("");
+  cmd->add_option("--out", args->out, "old spelling of --map-out")->group(kOldSpelling);
+  hide_old_spellings(cmd);
   cmd->add_option("--part", args->part,
                   "all: every scan; map: the even blocks of the split; held-out: the odd ones")
       ->check(CLI::IsMember({"all", "map", "held-out"}))

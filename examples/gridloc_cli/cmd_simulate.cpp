@@ -11,6 +11,7 @@
 #include "gridloc/sensors/scan_sim.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 #include "limit_options.hpp"
+#include "old_spelling.hpp"
 #include "options.hpp"
 #include "stdin_input.hpp"
 
@@ -101,7 +102,8 @@ void add_simulate(CLI::App& app) {
   cmd->add_option("--readings-out", args->out,
                   "write the readings JSON (with --scan, the scan CSV) to this file instead of "
                   "stdout");
-  cmd->add_option("--out", args->out)->group("");
+  cmd->add_option("--out", args->out, "old spelling of --readings-out")->group(kOldSpelling);
+  hide_old_spellings(cmd);
   cmd->add_option("--seed", args->sim.seed, "noise seed")->capture_default_str();
   cmd->add_option("--sigma", args->sim.range_sigma_m, "Gaussian range noise (m)")
       ->capture_default_str();
