@@ -275,17 +275,10 @@ EvalProtocol old_spelling_protocol(const EvalArgs& args, const DriveArgs& drive,
                                    const ProtocolArgs& protocol) {
   if (protocol.name == "disambiguation") return EvalProtocol::Disambiguation;
   if (protocol.name == "team") return EvalProtocol::Team;
+  if (drive.given) return EvalProtocol::Drive;  // run_drive checks its maps and estimators
   check_step(args.step_xy);
   const bool sector_estimators = names_a_sector_estimator(args.estimators);
   const std::vector<std::string> files = map_files(args, sector_estimators);
-  if (drive.given) {
-    if (sector_estimators || polygon_maps(files, false)) {
-      throw Error(
-          "--drive runs the drive protocol on grid maps with the sonar ring, not on "
-          "polygon maps or with a sector estimator");
-    }
-    return EvalProtocol::Drive;
-  }
   if (polygon_maps(files, sector_estimators)) return EvalProtocol::Sectors;
   return args.laser.enabled ? EvalProtocol::Laser : EvalProtocol::Sonar;
 }
