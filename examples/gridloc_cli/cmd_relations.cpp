@@ -37,7 +37,6 @@ struct RelationsArgs {
     s.strategy = "exhaustive";
     s.covariance_cells = defaults.covariance_cells;
     s.covariance_temperature = defaults.covariance_temperature;
-    s.scan_quantization_share = defaults.scan_quantization_share;
     return s;
   }();
   bool json = false;

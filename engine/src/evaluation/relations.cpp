@@ -148,7 +148,6 @@ CorrelationOptions exhaustive_search() {
   options.strategy = SearchStrategy::Exhaustive;
   options.covariance_cells = 5;
   options.covariance_temperature = 10.0;
-  options.scan_quantization_share = 1.0;  // the temperature was fitted with all of it
   return options;
 }
 

@@ -93,12 +93,13 @@ struct CorrelationOptions {
   double ring_covariance_temperature = 0.15;
   /// A scan's reported covariance keeps this share of the lattice's quantization variance
   /// (step^2 / 12 per axis) when its pose is refined between lattice poses (`refine`): the
-  /// refinement removes part of that error. With all of it the simulated laser's covariance
-  /// was padded (every `localized` error within 2 sigma, NEES 1.2 where 3 is calibrated); half
-  /// gives 87-89 % within 2 sigma and NEES 2.4 (seeds 11-13, README, "How far to trust the
-  /// covariance"). Reported covariance only (the verdict reads ConfidenceParts::spread_m); a
-  /// sonar ring's keeps all of it (ring_covariance_temperature is fitted with it).
-  double scan_quantization_share = 0.5;
+  /// refinement may remove part of that error. On the simulated laser half calibrates it (87-91 %
+  /// of the `localized` errors within 2 sigma, every one with all of it), but real scans'
+  /// global answers are optimistic already (51 % within 2 sigma with all of it, 33 % with
+  /// half; README, "How far to trust the covariance"), so all of it is the default. Reported
+  /// covariance only (the verdict reads ConfidenceParts::spread_m); a sonar ring keeps all of
+  /// it whatever this is.
+  double scan_quantization_share = 1.0;
   VerdictOptions verdict;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct

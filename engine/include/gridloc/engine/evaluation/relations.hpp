@@ -25,8 +25,7 @@ namespace gridloc {
 /// corridor's ridge then shows: over Intel's 106 pairs (5 seeds) and freiburg-079's 1141 (2
 /// seeds), correlation + ICP, the 2-sigma ellipse covers 95 % and 94 % of the `localized`
 /// answers (87 % and 58 % with 3 cells at temperature 1) and 2 fr079 answers fail while
-/// `localized`, against 9 (issue 30). The lattice's whole quantization variance is kept
-/// (scan_quantization_share 1): the temperature was fitted with it.
+/// `localized`, against 9 (issue 30).
 CorrelationOptions exhaustive_search();
 
 struct RelationEvalOptions {

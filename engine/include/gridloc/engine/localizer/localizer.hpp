@@ -31,13 +31,10 @@ struct LocalizerOptions {
   /// A laser's estimator raises a floor of 0 to min(0.8, drop_ratio, split_ratio), and its
   /// coarse copy's searches use min(drop_ratio, split_ratio): every place a reader keeps is
   /// still found, in one search (the same tracks on the shared buildings, the updates 13 %
-  /// and the first one 10-25x faster). A scan's windows report the lattice's whole
-  /// quantization variance (scan_quantization_share 1): reported_floor_m was fitted with it
-  /// (with half, 81.0 % of the real logs' `localized` errors within 2 sigma where 84.7).
+  /// and the first one 10-25x faster).
   CorrelationOptions correlation = [] {
     CorrelationOptions options;
     options.second_peak_floor = 0.0;
-    options.scan_quantization_share = 1.0;
     return options;
   }();
   /// Which past firings join the latest (distance, turn, count).
