@@ -4,6 +4,7 @@
 // across updates and reports its progress.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -238,6 +239,58 @@ TEST(Tracking, AFarWinnerJoinsAsAPlaceRatherThanMovingTheTrack) {
     EXPECT_TRUE(right(localizer.estimate(), path.back())) << split;
     EXPECT_EQ(localizer.estimate().verdict, Verdict::Localized) << split;
   }
+}
+
+// LocalizerOptions::kept_heading_sigmas: as above, but the odometry also turns 6 degrees the
+// robot did not at the first shifted scan (its model doubts about 3 degrees a step). The
+// winner 0.5 m away splits off; the place the odometry carried stays, looked for within two
+// standard deviations of its heading, so it is kept at the true heading; near the carried
+// heading alone (0) it is kept 3 degrees off, where the scan fits it far worse.
+TEST(Tracking, APlaceKeptBesideASplitOffWinnerIsKeptAtItsBestHeading) {
+  const OccupancyMap map = two_rooms();
+  std::vector<Pose2> path;  // east through room B
+  for (double x = 8.0; x < 10.05; x += 0.1) path.push_back({x, 5.5, 0.0});
+  const std::size_t first_shifted = 8, after_shifted = 11;
+  const double extra_turn = deg2rad(6.0);
+  for (const double sigmas : {LocalizerOptions{}.kept_heading_sigmas, 0.0}) {
+    LocalizerOptions options = laser_options();
+    options.kept_heading_sigmas = sigmas;
+    options.min_half_xy_m = 1.0;                        // every window sees the place 0.5 m away
+    options.odometry_turn_error_per_m = deg2rad(30.0);  // 3 deg of doubt a step
+    Localizer localizer(map, laser(), options);
+    localizer.add_odometry(path[0]);
+    localizer.set_prior(path[0], Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      const double turned = k >= first_shifted ? extra_turn : 0.0;
+      localizer.add_odometry({path[k].x, path[k].y, turned});
+      const bool shifted = k >= first_shifted && k < after_shifted;
+      const Pose2 seen = shifted ? Pose2{path[k].x + 0.5, path[k].y, 0.0} : path[k];
+      localizer.add_observation(double(k), scan_at(map, seen));
+      const Estimate e = localizer.estimate();
+      if (e.verdict == Verdict::Localized) {
+        EXPECT_TRUE(right(e, path[k]) || sigmas == 0.0) << sigmas << " step " << k;
+      }
+      if (k != first_shifted) continue;
+      const auto kept =
+          std::find_if(e.alternatives.begin(), e.alternatives.end(), [&](const Hypothesis& h) {
+            return std::hypot(h.pose.x - path[k].x, h.pose.y - path[k].y) <= 0.2;
+          });
+      ASSERT_NE(kept, e.alternatives.end()) << sigmas;
+      const double heading_off = std::abs(rad2deg(normalize_angle(kept->pose.theta)));
+      if (sigmas > 0.0) {
+        EXPECT_LE(heading_off, 1.0);
+      } else {
+        EXPECT_GE(heading_off, 2.5);
+      }
+    }
+    if (sigmas > 0.0) {
+      EXPECT_TRUE(right(localizer.estimate(), path.back()));
+      EXPECT_EQ(localizer.estimate().verdict, Verdict::Localized);
+    }
+  }
+  LocalizerOptions bad = laser_options();
+  bad.kept_max_half_theta = 4.0;
+  test::expect_error([&] { Localizer(map, laser(), bad); }, {"kept_max_half_theta", "4"});
 }
 
 // LocalizerOptions::max_half_theta: when the odometry claims a turn the robot did not make

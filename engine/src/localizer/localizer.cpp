@@ -74,6 +74,9 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
   require_non_negative(options.reported_floor_rad, "reported_floor_rad");
   require_share(options.turn_fit_ratio, "turn_fit_ratio");
   require_non_negative(options.odometry_turn_error_per_rad, "odometry_turn_error_per_rad");
+  require_non_negative(options.kept_heading_sigmas, "kept_heading_sigmas");
+  require(options.kept_max_half_theta >= 0.0 && options.kept_max_half_theta <= std::numbers::pi,
+          "kept_max_half_theta", options.kept_max_half_theta, "must lie in [0, pi]");
   validate(options.drive);
   validate(options.hypothesis_set);
   validate(options.weights);

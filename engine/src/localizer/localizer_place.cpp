@@ -56,11 +56,12 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   if ((surprise || !odometry_holds) && look_alikes != nullptr &&
       splits_off(hypothesis, near.pose, e.pose)) {
     // The winner joins as a place of its own, weighted by the odometry's prior; this one
-    // stays where the odometry put it, with the scan's evidence there.
+    // stays where the odometry put it, at its best heading within the odometry's doubt, with
+    // the scan's evidence there.
     look_alikes->push_back(
         {e.pose, log_prior(e.pose, prior.carried, prior.covariance, prior.floor)});
-    hypothesis.pose = near.pose;
-    e = near;
+    e = best_near(hypothesis.pose, observation, global, kept_half_theta(hypothesis));
+    hypothesis.pose = e.pose;
     e.verdict = Verdict::NotLocalized;
     return;
   }
@@ -120,6 +121,11 @@ bool Localizer::splits_off(const TrackedHypothesis& hypothesis, const Pose2& kep
   const bool apart = std::hypot(winner.x - kept.x, winner.y - kept.y) > set.merge_xy ||
                      std::abs(normalize_angle(winner.theta - kept.theta)) > set.merge_theta;
   return options_.split_far_winners && laser_ && hypothesis.confirmed && apart;
+}
+
+double Localizer::kept_half_theta(const TrackedHypothesis& carried) const {
+  return std::min(options_.kept_max_half_theta,
+                  options_.kept_heading_sigmas * std::sqrt(carried.covariance(2, 2)));
 }
 
 bool Localizer::tight(const Eigen::Matrix3d& covariance) const {

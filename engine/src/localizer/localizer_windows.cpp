@@ -94,13 +94,13 @@ std::vector<LookAlike> Localizer::other_places(const Estimate& rough, const Esti
 }
 
 Estimate Localizer::best_near(const Pose2& pose, const Observation& observation,
-                              const SearchWindow& global) const {
+                              const SearchWindow& global, double half_theta) const {
   SearchWindow near;
   near.center = pose;
   near.step_xy = estimator_.options().resolution;
   near.step_theta = global.step_theta;
   near.half_xy = 2.0 * near.step_xy;
-  near.half_theta = 2.0 * near.step_theta;
+  near.half_theta = std::max(half_theta, 2.0 * near.step_theta);
   return estimator_.estimate(observation, near, 1);
 }
 

@@ -77,6 +77,15 @@ struct LocalizerOptions {
   /// fits only a little better, as where the map's half saw a corridor differently, does
   /// not). false: the place follows the winner, not `localized` at that scan.
   bool split_far_winners = true;
+  /// When a far winner splits off, the place the odometry carried stays at the best pose
+  /// within two cells and this many standard deviations of its carried heading (at least two
+  /// heading steps, at most kept_max_half_theta): scored at a heading the odometry got a few
+  /// degrees wrong, the right place fits far worse than the look-alike and loses the weights
+  /// to it (aces' held-out scan 362 with 5 % + 5 deg/m odometry: 70 at 3.5 deg off against
+  /// 109 at a place 0.36 m along the corridor, then three scans `localized` 0.3-0.9 m off).
+  /// 0: two heading steps of the carried heading.
+  double kept_heading_sigmas = 2.0;
+  double kept_max_half_theta = 0.174532925199;  ///< 10 deg
   /// A window scoring below this share of the place's usual normalized score is not
   /// `localized`, whatever its own verdict: the scan fits the place worse than the scans
   /// before it did (a look-alike a corridor slid or turned the place into, or a view the map
@@ -330,9 +339,12 @@ class Localizer {
   /// with its log prior against the chosen place's.
   std::vector<LookAlike> other_places(const Estimate& rough, const Estimate& chosen,
                                       const PlacePrior& prior) const;
-  /// The best pose within two cells and two heading steps of `pose`.
-  Estimate best_near(const Pose2& pose, const Observation& observation,
-                     const SearchWindow& global) const;
+  /// The best pose within two cells and max(half_theta, two heading steps) of `pose`.
+  Estimate best_near(const Pose2& pose, const Observation& observation, const SearchWindow& global,
+                     double half_theta = 0.0) const;
+  /// How far either way of its carried heading a place kept beside a split-off winner is
+  /// looked for (LocalizerOptions::kept_heading_sigmas).
+  double kept_half_theta(const TrackedHypothesis& carried) const;
   /// The window around a carried place, its half sides from its covariance.
   SearchWindow window_around(const TrackedHypothesis& hypothesis, const SearchWindow& global) const;
 
