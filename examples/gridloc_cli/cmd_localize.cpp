@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -38,6 +39,8 @@ struct LocalizeArgs {
   double coarse = kAutoCoarse;
   int coarse_places = CoarseToFineOptions{}.places;                      ///< --coarse-places
   double through_wall_ratio = CoarseToFineOptions{}.through_wall_ratio;  ///< --through-wall-ratio
+  double reported_floor_m = CoarseToFineOptions{}.reported_floor_m;      ///< --reported-floor-m
+  double reported_floor_deg = rad2deg(CoarseToFineOptions{}.reported_floor_rad);  ///< ...-deg
   bool json = true;  // --json: JSON is the only output, the flag is accepted
 };
 
@@ -68,6 +71,12 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
   if (!(args.through_wall_ratio >= 0.0) || !std::isfinite(args.through_wall_ratio)) {
     throw Error("--through-wall-ratio must be finite and >= 0 (0: no check), got " +
                 std::to_string(args.through_wall_ratio));
+  }
+  for (const auto& [flag, value] : {std::pair{"--reported-floor-m", args.reported_floor_m},
+                                    std::pair{"--reported-floor-deg", args.reported_floor_deg}}) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      throw Error(std::string(flag) + " must be finite and >= 0, got " + std::to_string(value));
+    }
   }
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(
@@ -133,6 +142,8 @@ CoarseToFineOptions coarse_to_fine_options(const LocalizeArgs& args, double coar
   options.resolution = coarse;
   options.places = args.coarse_places;
   options.through_wall_ratio = args.through_wall_ratio;
+  options.reported_floor_m = args.reported_floor_m;
+  options.reported_floor_rad = deg2rad(args.reported_floor_deg);
   return options;
 }
 
@@ -266,6 +277,14 @@ void add_localize(CLI::App& app) {
                   "coarse-to-fine: an answer whose returns cross a wall of the map this share "
                   "of its fit or more is not localized (JSON through_walls: that share); 0: no "
                   "check")
+      ->capture_default_str();
+  cmd->add_option("--reported-floor-m", args->reported_floor_m,
+                  "coarse-to-fine: added to the reported position standard deviations in "
+                  "quadrature (a real map's error; 0 with --reported-floor-deg 0: the score "
+                  "surface's covariance alone)")
+      ->capture_default_str();
+  cmd->add_option("--reported-floor-deg", args->reported_floor_deg,
+                  "coarse-to-fine: the same for the heading (degrees)")
       ->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

@@ -110,6 +110,25 @@ TEST(CoarseCli, BadCoarseCellIsOneLine) {
   expect_cli_error(run_cli(dir, base + " --coarse 1"), {"--coarse", "cell size"});
   expect_cli_error(run_cli(dir, base + " --coarse-places 0"), {"--coarse-places", "[1, 100]"});
   expect_cli_error(run_cli(dir, base + " --coarse-places 500"), {"--coarse-places", "[1, 100]"});
+  expect_cli_error(run_cli(dir, base + " --reported-floor-m -0.1"), {"--reported-floor-m", "-0.1"});
+  expect_cli_error(run_cli(dir, base + " --reported-floor-deg nan"), {"--reported-floor-deg"});
+}
+
+// The reported floor (3 cm, 0.5 deg by default) adds to the standard deviations in
+// quadrature; the pose and the verdict stay.
+TEST(CoarseCli, TheReportedFloorWidensTheStandardDeviationsOnly) {
+  TempDir dir;
+  const std::string scan = simulated_scan(dir, 180);
+  const nlohmann::json floored = localize(dir, scan, "");
+  const nlohmann::json bare = localize(dir, scan, " --reported-floor-m 0 --reported-floor-deg 0");
+  EXPECT_EQ(floored["pose"], bare["pose"]);
+  EXPECT_EQ(floored["verdict"], bare["verdict"]);
+  const auto squared = [](const nlohmann::json& j, const char* axis) {
+    return std::pow(j["std"][axis].get<double>(), 2);
+  };
+  EXPECT_NEAR(squared(floored, "x") - squared(bare, "x"), 0.03 * 0.03, 1e-9);
+  EXPECT_NEAR(squared(floored, "y") - squared(bare, "y"), 0.03 * 0.03, 1e-9);
+  EXPECT_NEAR(squared(floored, "theta") - squared(bare, "theta"), std::pow(deg2rad(0.5), 2), 1e-12);
 }
 
 }  // namespace

@@ -272,6 +272,30 @@ TEST(CoarseToFine, AScanSeeingThroughTheMapsWallsIsNotLocalized) {
   EXPECT_LT(seen.through_walls, 0.05);
 }
 
+// The reported floor (a real map's error) widens the answer's covariance by its squares on
+// the diagonal and changes nothing else.
+TEST(CoarseToFine, TheReportedFloorWidensOnlyTheCovariance) {
+  const auto fine = laser_estimator("apartment_small");
+  CoarseToFineOptions bare;
+  bare.reported_floor_m = 0.0;
+  bare.reported_floor_rad = 0.0;
+  const CoarseToFineOptions floored;
+  const CoarseToFineEstimator a(fine, floored), b(fine, bare);
+  Rng rng(19);
+  for (int trial = 0; trial < 2; ++trial) {
+    const auto [truth, observation, whole] = trial_on(*fine, rng);
+    const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
+    const std::string what = "trial " + std::to_string(trial);
+    expect_same_answer(ea, eb, what);
+    EXPECT_EQ(ea.confidence, eb.confidence) << what;
+    const Eigen::Vector3d floor(0.03 * 0.03, 0.03 * 0.03,
+                                std::pow(0.5 * std::numbers::pi / 180, 2));
+    EXPECT_NEAR((ea.covariance - eb.covariance - Eigen::Matrix3d(floor.asDiagonal())).norm(), 0.0,
+                1e-12)
+        << what;
+  }
+}
+
 TEST(CoarseToFine, BadOptionsAreRefused) {
   const auto fine = laser_estimator("room_rect");
   CoarseToFineOptions options;
@@ -300,6 +324,12 @@ TEST(CoarseToFine, BadOptionsAreRefused) {
   options = {};
   options.through_wall_margin_m = std::nan("");
   test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"through_wall_margin_m"});
+  options = {};
+  options.reported_floor_m = -0.01;
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"reported_floor_m", "-0.01"});
+  options = {};
+  options.reported_floor_rad = std::nan("");
+  test::expect_error([&] { CoarseToFineEstimator(fine, options); }, {"reported_floor_rad"});
   test::expect_error([&] { CoarseToFineEstimator(nullptr, {}); }, {"no fine estimator"});
   CorrelationOptions too_deep = fine->options();
   too_deep.max_bound_depth = 40;

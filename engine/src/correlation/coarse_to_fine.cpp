@@ -123,6 +123,12 @@ Pose2 inside(const GridGeometry& map, const Pose2& pose) {
   return map.to_world_frame(local);
 }
 
+/// The reported covariance widened by the options' floor (CoarseToFineOptions::reported_floor_m).
+void add_floor(Estimate& e, const CoarseToFineOptions& options) {
+  const double xy = options.reported_floor_m, theta = options.reported_floor_rad;
+  e.covariance += Eigen::Vector3d(xy * xy, xy * xy, theta * theta).asDiagonal().toDenseMatrix();
+}
+
 void add_counts(SearchStats& total, const SearchStats& one) {
   total.poses_scored += one.poses_scored;
   total.cells_scored += one.cells_scored;
@@ -144,6 +150,10 @@ void validate(const CoarseToFineOptions& options, double fine_resolution) {
           "through_wall_ratio", options.through_wall_ratio, "must be finite and >= 0");
   require(std::isfinite(options.through_wall_margin_m) && options.through_wall_margin_m >= 0.0,
           "through_wall_margin_m", options.through_wall_margin_m, "must be finite and >= 0");
+  require(std::isfinite(options.reported_floor_m) && options.reported_floor_m >= 0.0,
+          "reported_floor_m", options.reported_floor_m, "must be finite and >= 0");
+  require(std::isfinite(options.reported_floor_rad) && options.reported_floor_rad >= 0.0,
+          "reported_floor_rad", options.reported_floor_rad, "must be finite and >= 0");
   require(std::isfinite(options.half_xy_cells) && options.half_xy_cells > 0.0, "half_xy_cells",
           options.half_xy_cells, "must be finite and > 0");
   require(std::isfinite(options.half_theta_steps) && options.half_theta_steps > 0.0,
@@ -178,6 +188,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   for (const Estimate& r : refined) add_counts(stats, r.stats);
   Estimate e = best_of(std::move(refined), fine_->options(), options_);
   if (observation.scan) check_walls(e, fine_->map(), *observation.scan, options_);
+  add_floor(e, options_);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;
