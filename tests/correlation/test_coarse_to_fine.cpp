@@ -137,6 +137,8 @@ TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
   const auto deep = laser_estimator("apartment_small");
   const auto shallow = laser_estimator("apartment_small", true, depth);
   const CoarseToFineEstimator a(deep, options), b(shallow, options);
+  // The coarse copy searches the whole map whatever depth the fine estimator was built to.
+  EXPECT_EQ(b.coarse().options().max_bound_depth, 0);
   Rng rng(11);
   for (int trial = 0; trial < 4; ++trial) {
     const auto [truth, observation, whole] = trial_on(*deep, rng);
