@@ -7,7 +7,9 @@
 ///   search of case 1 (items = local grids built); every model at 5 cm, rays also at 10 and
 ///   20 cm. For hits and samples each call also derives the scan's points (scan_points), which
 ///   estimate() does once per call, not per heading.
-/// - BM_ApartmentScan/<case>/<strategy>/<model>[/threads:2][/intervals][/no_second_peak]: one
+/// -
+/// BM_ApartmentScan/<case>/<strategy>/<model>[/threads:2[/uncapped]][/intervals][/no_second_peak]:
+/// one
 ///   estimate() per iteration.
 ///   Cases: case1 and case2 search +-0.5 m, +-0.3 rad at 0.005 rad from the README's start
 ///   poses; case1_wide searches +-2 m, +-30 deg at the step that moves the farthest return by
@@ -16,7 +18,9 @@
 ///   Strategies: bnb (every case), multires (windowed and wide), exhaustive (case1 only, one
 ///   iteration per repetition). Models: hits and samples everywhere, rays also for case1 with
 ///   bnb (slow: every crossed cell). Variants, bnb with hits and samples only: threads:2
-///   (CorrelationOptions::threads = 2; process CPU time), no_second_peak (second_peak = false and
+///   (CorrelationOptions::threads = 2; process CPU time; a window of fewer than
+///   poses_per_thread lattice poses a thread runs on fewer), threads:2/uncapped (hits only:
+///   poses_per_thread = 0, two threads on every window), no_second_peak (second_peak = false and
 ///   covariance_cells = 0: only the best pose, as the peers' figures), intervals (heading_intervals
 ///   = true; case1 and case1_global) and intervals/no_second_peak (the same two cases). Global rows
 ///   take 0.1-2.5 s per call: they run a fixed iteration count, 1 in the default (smoke) set and
@@ -145,12 +149,16 @@ struct Config {
   int threads = 1;
   bool intervals = false;
   bool second_peak = true;
+  bool uncapped = false;  ///< poses_per_thread 0: every search on `threads`, however small
 
-  auto key() const { return std::tuple{strategy, model, threads, intervals, second_peak}; }
-  /// <strategy>/<model>[/threads:2][/intervals][/no_second_peak]
+  auto key() const {
+    return std::tuple{strategy, model, threads, intervals, second_peak, uncapped};
+  }
+  /// <strategy>/<model>[/threads:2[/uncapped]][/intervals][/no_second_peak]
   std::string name() const {
     std::string n = to_string(strategy) + "/" + to_string(model);
     if (threads != 1) n += "/threads:" + std::to_string(threads);
+    if (uncapped) n += "/uncapped";
     if (intervals) n += "/intervals";
     if (!second_peak) n += "/no_second_peak";
     return n;
@@ -162,6 +170,7 @@ CorrelationOptions scan_options(const Config& c) {
   o.strategy = c.strategy;
   o.scan.model = c.model;
   o.threads = c.threads;
+  if (c.uncapped) o.poses_per_thread = 0.0;
   o.heading_intervals = c.intervals;
   o.second_peak = c.second_peak;
   // "Best pose only" is what the peers' figures measure: no second peak, no covariance.
@@ -374,6 +383,9 @@ std::vector<Config> configs(const Case& c) {
     out.push_back({SearchStrategy::BranchAndBound, m});
     out.push_back({SearchStrategy::BranchAndBound, m, 1, false, false});  // no_second_peak
     out.push_back({SearchStrategy::BranchAndBound, m, 2});                // threads:2
+    if (m == ScanModel::Hits) {  // threads:2/uncapped: the second thread on small windows too
+      out.push_back({SearchStrategy::BranchAndBound, m, 2, false, true, true});
+    }
     if (intervals) {
       out.push_back({SearchStrategy::BranchAndBound, m, 1, true});
       out.push_back({SearchStrategy::BranchAndBound, m, 1, true, false});

@@ -137,6 +137,7 @@ TEST(ConcurrentEstimates, CorrelationOnSonarRings) {
   for (int threads : {1, 2}) {  // each call's own search threads, as well
     CorrelationOptions options;
     options.threads = threads;
+    options.poses_per_thread = 0.0;  // two threads even on these small windows
     const CorrelationEstimator estimator(map, ring, options);
     expect_threads_agree(estimator, queries);
   }

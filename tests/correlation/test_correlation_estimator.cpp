@@ -285,6 +285,10 @@ TEST_F(Estimator, BadOptions) {
   o = {};
   o.keep = 0;
   test::expect_error([&] { CorrelationEstimator(map("room_rect"), ring(), o); }, {"keep"});
+  o = {};
+  o.poses_per_thread = -1.0;
+  test::expect_error([&] { CorrelationEstimator(map("room_rect"), ring(), o); },
+                     {"poses_per_thread", "-1"});
   test::expect_error([&] { CorrelationEstimator(OccupancyMap{}, ring(), {}); }, {"empty"});
   CorrelationOptions hurried = options(SearchStrategy::Multires);
   hurried.budget_ms = 5.0;
@@ -319,6 +323,7 @@ TEST(CorrelationEstimatorThreads, TwoThreadsGiveTheSameEstimateAsOne) {
     CorrelationOptions one, two;
     one.strategy = two.strategy = strategy;
     two.threads = 2;
+    two.poses_per_thread = 0.0;  // these small windows would run on one thread otherwise
     const CorrelationEstimator a(map, ring, one), b(map, ring, two);
     Rng rng(99);
     for (int t = 0; t < 5; ++t) {

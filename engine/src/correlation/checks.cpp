@@ -52,6 +52,8 @@ void check(const CorrelationOptions& options) {
   }
   require_option(options.threads >= 1 && options.threads <= 256, owner, "threads", options.threads,
                  "must be in [1, 256]");
+  require_option(std::isfinite(options.poses_per_thread) && options.poses_per_thread >= 0.0, owner,
+                 "poses_per_thread", options.poses_per_thread, "must be finite and >= 0");
   options.limits.validate();
 }
 

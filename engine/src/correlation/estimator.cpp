@@ -84,6 +84,15 @@ struct WindowSearch {
   SearchResult result;  ///< of the first search, with the counters of all
 };
 
+/// The threads a search of `lattice` runs on (CorrelationOptions::poses_per_thread).
+int threads_for(const Lattice& lattice, const CorrelationOptions& options) {
+  if (options.poses_per_thread <= 0.0 || options.threads <= 1) return options.threads;
+  const double poses = static_cast<double>(lattice.x1 - lattice.x0 + 1) *
+                       static_cast<double>(lattice.y1 - lattice.y0 + 1) * lattice.headings;
+  const double share = std::floor(poses / options.poses_per_thread);
+  return static_cast<int>(std::clamp(share, 1.0, static_cast<double>(options.threads)));
+}
+
 /// The strategy's search for the best lattice pose (ties to the lowest index).
 void search_lattice(WindowSearch& search, const CorrelationOptions& options) {
   search.bnb.threads = options.threads;
@@ -350,10 +359,11 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   peak_options.hypotheses = hypotheses;
   const auto start = std::chrono::steady_clock::now();
   const Lattice lattice = this->lattice(observation, window);  // checks both first
+  peak_options.threads = threads_for(lattice, options_);
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
   const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
   const std::vector<SearchLevel> levels =
-      search_levels(observation, points ? &*points : nullptr, level_count);
+      search_levels(observation, points ? &*points : nullptr, level_count, peak_options.threads);
   check_resources(map_.geometry, options_, reach_,
                   search_size(lattice, levels.front(), options_.strategy, level_count, false),
                   positive_only_);
@@ -361,7 +371,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   if (hypotheses_in_one_pass(options_, hypotheses)) {
     search.bnb.keep_share = options_.second_peak_floor;
   }
-  search_lattice(search, options_);
+  search_lattice(search, peak_options);
   const LatticePose& best = search.result.best;
 
   Estimate e;
@@ -399,8 +409,8 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
 }
 
 std::vector<SearchLevel> CorrelationEstimator::search_levels(const Observation& observation,
-                                                             const ScanPoints* points,
-                                                             int count) const {
+                                                             const ScanPoints* points, int count,
+                                                             int threads) const {
   std::vector<SearchLevel> levels;
   levels.reserve(static_cast<std::size_t>(std::max(count, 0)));
   for (int l = 0; l < count; ++l) {
@@ -410,7 +420,7 @@ std::vector<SearchLevel> CorrelationEstimator::search_levels(const Observation& 
              double theta, const Eigen::Vector2d& centre) {
            return local_grid(observation, points, theta, level_res, centre);
          },
-         options_.threads});
+         threads});
   }
   // Rigid points: branch and bound places them directly and can bound heading intervals.
   if (points != nullptr) levels.front().points = points;
@@ -422,7 +432,8 @@ ScoreVolume CorrelationEstimator::score_volume(const Observation& observation,
   const Lattice lattice = this->lattice(observation, window);
   const double res = options_.resolution;
   const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
-  const SearchLevel level = search_levels(observation, points ? &*points : nullptr, 1).front();
+  const SearchLevel level =
+      search_levels(observation, points ? &*points : nullptr, 1, options_.threads).front();
   check_resources(map_.geometry, options_, reach_,
                   search_size(lattice, level, SearchStrategy::Exhaustive, 1, true), positive_only_);
   const SearchResult r = search_exhaustive(lattice, level);

@@ -44,6 +44,11 @@ struct CorrelationOptions {
   int levels = 3;                       ///< multiresolution levels, cells 1x, 2x, 4x ... the finest
   int keep = 8;                         ///< poses kept per level for the next finer one
   int threads = 1;  ///< threads scoring headings / expanding blocks in parallel; same result
+  /// A search runs on one thread per this many lattice poses of its window (translations x
+  /// headings), at most `threads` and at least one: a small window's second thread costs more
+  /// than it shares, and far more with the other core busy (issue 17; bench/RESULTS.md).
+  /// 0: every search on `threads`.
+  double poses_per_thread = 2e6;
   /// Branch and bound only: stop the search after about this many milliseconds and return
   /// the best pose so far (Estimate::stats says whether it is proven optimal); 0 = no limit.
   double budget_ms = 0.0;
@@ -186,10 +191,10 @@ class CorrelationEstimator final : public Estimator {
   SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,
                              double resolution, const Eigen::Vector2d& centre) const;
   /// The first `count` levels' search levels for `observation`: each padded grid with the
-  /// maker of the observation's local grids at its resolution; `points` (may be nullptr) on
-  /// the finest (SearchLevel::points).
+  /// maker of the observation's local grids at its resolution, built on `threads`; `points`
+  /// (may be nullptr) on the finest (SearchLevel::points).
   std::vector<SearchLevel> search_levels(const Observation& observation, const ScanPoints* points,
-                                         int count) const;
+                                         int count, int threads) const;
 
   OccupancyMap map_;
   SonarRing ring_;
