@@ -236,8 +236,13 @@ void run(const LocalizeArgs& args) {
   const std::string search = kind != EstimatorKind::Correlation ? ""
                              : coarse > 0.0                     ? "coarse-to-fine"
                                             : to_string(correlation->options().strategy);
-  const RepeatedEstimate result =
+  RepeatedEstimate result =
       estimate_repeatedly(estimator, localization.observation, localization.window, args.repeat);
+  // A laser scan's windowed answer reports the floor its whole-map answer does (coarse-to-fine
+  // adds it itself): a real map's error the score surface does not see.
+  if (localization.observation.scan && kind == EstimatorKind::Correlation && coarse == 0.0) {
+    add_reported_floor(result.estimate, args.reported_floor_m, deg2rad(args.reported_floor_deg));
+  }
   std::cout << localize_json(result, estimator, localization, precompute_ms, args.repeat, search,
                              coarse)
                    .dump(2)
@@ -279,12 +284,12 @@ void add_localize(CLI::App& app) {
                   "check")
       ->capture_default_str();
   cmd->add_option("--reported-floor-m", args->reported_floor_m,
-                  "coarse-to-fine: added to the reported position standard deviations in "
-                  "quadrature (a real map's error; 0 with --reported-floor-deg 0: the score "
-                  "surface's covariance alone)")
+                  "with --scan (the correlation search): added to the reported position "
+                  "standard deviations in quadrature (a real map's error; 0 with "
+                  "--reported-floor-deg 0: the score surface's covariance alone)")
       ->capture_default_str();
   cmd->add_option("--reported-floor-deg", args->reported_floor_deg,
-                  "coarse-to-fine: the same for the heading (degrees)")
+                  "with --scan: the same for the heading (degrees)")
       ->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "repeat the localization N times for timing")
       ->capture_default_str();

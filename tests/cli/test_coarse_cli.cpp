@@ -115,20 +115,32 @@ TEST(CoarseCli, BadCoarseCellIsOneLine) {
 }
 
 // The reported floor (3 cm, 0.5 deg by default) adds to the standard deviations in
-// quadrature; the pose and the verdict stay.
+// quadrature, whole-map (coarse-to-fine) and windowed alike; the pose and the verdict stay.
 TEST(CoarseCli, TheReportedFloorWidensTheStandardDeviationsOnly) {
   TempDir dir;
   const std::string scan = simulated_scan(dir, 180);
-  const nlohmann::json floored = localize(dir, scan, "");
-  const nlohmann::json bare = localize(dir, scan, " --reported-floor-m 0 --reported-floor-deg 0");
-  EXPECT_EQ(floored["pose"], bare["pose"]);
-  EXPECT_EQ(floored["verdict"], bare["verdict"]);
+  const auto run = [&](const std::string& search, const std::string& floor) {
+    const CliRun r = run_cli(dir, "localize --map " + quote(kMap) + " --scan " + quote(scan) +
+                                      " --max-range 8" + search + floor);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.status == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+  };
   const auto squared = [](const nlohmann::json& j, const char* axis) {
     return std::pow(j["std"][axis].get<double>(), 2);
   };
-  EXPECT_NEAR(squared(floored, "x") - squared(bare, "x"), 0.03 * 0.03, 1e-9);
-  EXPECT_NEAR(squared(floored, "y") - squared(bare, "y"), 0.03 * 0.03, 1e-9);
-  EXPECT_NEAR(squared(floored, "theta") - squared(bare, "theta"), std::pow(deg2rad(0.5), 2), 1e-12);
+  for (const std::string search :
+       {" --global", " --prior 4.25,2.05,0.72 --window-xy 0.3 --window-theta 0.2"}) {
+    const nlohmann::json floored = run(search, "");
+    const nlohmann::json bare = run(search, " --reported-floor-m 0 --reported-floor-deg 0");
+    expect_near_truth(floored);
+    EXPECT_EQ(floored["pose"], bare["pose"]) << search;
+    EXPECT_EQ(floored["verdict"], bare["verdict"]) << search;
+    EXPECT_NEAR(squared(floored, "x") - squared(bare, "x"), 0.03 * 0.03, 1e-9) << search;
+    EXPECT_NEAR(squared(floored, "y") - squared(bare, "y"), 0.03 * 0.03, 1e-9) << search;
+    EXPECT_NEAR(squared(floored, "theta") - squared(bare, "theta"), std::pow(deg2rad(0.5), 2),
+                1e-12)
+        << search;
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -52,6 +53,19 @@ Trial trial_on(const CorrelationEstimator& fine, Rng& rng) {
   t.observation = scan_at(fine.map(), t.truth, rng.next());
   t.whole = fine.global_window(t.observation);
   return t;
+}
+
+/// Runs `a` and `b` on `trials` scans simulated on `on`'s map (seeded `seed`) and hands each
+/// pair of answers, the trial and its name to `check`.
+template <typename Check>
+void on_trials(const CoarseToFineEstimator& a, const CoarseToFineEstimator& b,
+               const CorrelationEstimator& on, std::uint64_t seed, int trials, Check check) {
+  Rng rng(seed);
+  for (int trial = 0; trial < trials; ++trial) {
+    const Trial t = trial_on(on, rng);
+    check(a.estimate(t.observation, t.whole), b.estimate(t.observation, t.whole), t,
+          "trial " + std::to_string(trial));
+  }
 }
 
 /// Expects the same answer, bit for bit: pose, scores, hypotheses and verdict.
@@ -119,13 +133,10 @@ TEST(CoarseToFine, TheSecondPeakOptionLeavesThePlacesAlone) {
   const auto with = laser_estimator("apartment_small");
   const auto without = laser_estimator("apartment_small", false);
   const CoarseToFineEstimator a(with), b(without);
-  Rng rng(3);
-  for (int trial = 0; trial < 3; ++trial) {
-    const auto [truth, observation, whole] = trial_on(*with, rng);
-    const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
-    const std::string what = "trial " + std::to_string(trial);
-    expect_same_answer(ea, eb, what);
-  }
+  on_trials(a, b, *with, 3, 3,
+            [](const Estimate& ea, const Estimate& eb, const Trial&, const std::string& what) {
+              expect_same_answer(ea, eb, what);
+            });
 }
 
 // The fine estimator built for the refinement windows only (a shallow bound pyramid) gives
@@ -283,19 +294,14 @@ TEST(CoarseToFine, TheReportedFloorWidensOnlyTheCovariance) {
   bare.reported_floor_rad = 0.0;
   const CoarseToFineOptions floored;
   const CoarseToFineEstimator a(fine, floored), b(fine, bare);
-  Rng rng(19);
-  for (int trial = 0; trial < 2; ++trial) {
-    const auto [truth, observation, whole] = trial_on(*fine, rng);
-    const Estimate ea = a.estimate(observation, whole), eb = b.estimate(observation, whole);
-    const std::string what = "trial " + std::to_string(trial);
-    expect_same_answer(ea, eb, what);
-    EXPECT_EQ(ea.confidence, eb.confidence) << what;
-    const Eigen::Vector3d floor(0.03 * 0.03, 0.03 * 0.03,
-                                std::pow(0.5 * std::numbers::pi / 180, 2));
-    EXPECT_NEAR((ea.covariance - eb.covariance - Eigen::Matrix3d(floor.asDiagonal())).norm(), 0.0,
-                1e-12)
-        << what;
-  }
+  const Eigen::Vector3d floor(0.03 * 0.03, 0.03 * 0.03, std::pow(0.5 * std::numbers::pi / 180, 2));
+  on_trials(a, b, *fine, 19, 2,
+            [&](const Estimate& ea, const Estimate& eb, const Trial&, const std::string& what) {
+              expect_same_answer(ea, eb, what);
+              EXPECT_EQ(ea.confidence, eb.confidence) << what;
+              const Eigen::Matrix3d added = ea.covariance - eb.covariance;
+              EXPECT_NEAR((added - Eigen::Matrix3d(floor.asDiagonal())).norm(), 0.0, 1e-12) << what;
+            });
 }
 
 TEST(CoarseToFine, BadOptionsAreRefused) {

@@ -128,12 +128,6 @@ Pose2 inside(const GridGeometry& map, const Pose2& pose) {
   return map.to_world_frame(local);
 }
 
-/// The reported covariance widened by the options' floor (CoarseToFineOptions::reported_floor_m).
-void add_floor(Estimate& e, const CoarseToFineOptions& options) {
-  const double xy = options.reported_floor_m, theta = options.reported_floor_rad;
-  e.covariance += Eigen::Vector3d(xy * xy, xy * xy, theta * theta).asDiagonal().toDenseMatrix();
-}
-
 void add_counts(SearchStats& total, const SearchStats& one) {
   total.poses_scored += one.poses_scored;
   total.cells_scored += one.cells_scored;
@@ -193,7 +187,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   for (const Estimate& r : refined) add_counts(stats, r.stats);
   Estimate e = best_of(std::move(refined), fine_->options(), options_);
   if (observation.scan) check_walls(e, fine_->map(), *observation.scan, options_);
-  add_floor(e, options_);
+  add_reported_floor(e, options_.reported_floor_m, options_.reported_floor_rad);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
   e.stats.levels = 2;

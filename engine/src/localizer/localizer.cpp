@@ -296,8 +296,7 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   // the last update (no place left, no search) has its floor already.
   const bool carried_over = next.set.hypotheses.empty() && !searched;
   if (laser_ && !carried_over) {
-    const double xy = options_.reported_floor_m, theta = options_.reported_floor_rad;
-    e.covariance += Eigen::Vector3d(xy * xy, xy * xy, theta * theta).asDiagonal().toDenseMatrix();
+    add_reported_floor(e, options_.reported_floor_m, options_.reported_floor_rad);
   }
   take_estimate(next, e, taken_at);
   std::unique_lock lock(mutex_);

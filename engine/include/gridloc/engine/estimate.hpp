@@ -95,4 +95,13 @@ struct Estimate {
   SearchStats stats;
 };
 
+/// Widens `e`'s reported covariance by a floor, floor_m squared on each position variance and
+/// floor_rad squared on the heading's: an error the score surface does not see, such as a real
+/// map's (LocalizerOptions::reported_floor_m, CoarseToFineOptions::reported_floor_m).
+inline void add_reported_floor(Estimate& e, double floor_m, double floor_rad) {
+  e.covariance += Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad)
+                      .asDiagonal()
+                      .toDenseMatrix();
+}
+
 }  // namespace gridloc
