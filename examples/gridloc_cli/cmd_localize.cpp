@@ -72,11 +72,14 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
     throw Error("--through-wall-ratio must be finite and >= 0 (0: no check), got " +
                 std::to_string(args.through_wall_ratio));
   }
-  for (const auto& [flag, value] : {std::pair{"--reported-floor-m", args.reported_floor_m},
-                                    std::pair{"--reported-floor-deg", args.reported_floor_deg}}) {
-    if (!(value >= 0.0) || !std::isfinite(value)) {
-      throw Error(std::string(flag) + " must be finite and >= 0, got " + std::to_string(value));
-    }
+  // Bounded so that their squares stay finite: a floor is centimetres and a degree or two.
+  if (!(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0)) {
+    throw Error("--reported-floor-m must lie in [0, 100] m, got " +
+                std::to_string(args.reported_floor_m));
+  }
+  if (!(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0)) {
+    throw Error("--reported-floor-deg must lie in [0, 180] degrees, got " +
+                std::to_string(args.reported_floor_deg));
   }
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(

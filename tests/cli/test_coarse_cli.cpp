@@ -112,6 +112,7 @@ TEST(CoarseCli, BadCoarseCellIsOneLine) {
   expect_cli_error(run_cli(dir, base + " --coarse-places 500"), {"--coarse-places", "[1, 100]"});
   expect_cli_error(run_cli(dir, base + " --reported-floor-m -0.1"), {"--reported-floor-m", "-0.1"});
   expect_cli_error(run_cli(dir, base + " --reported-floor-deg nan"), {"--reported-floor-deg"});
+  expect_cli_error(run_cli(dir, base + " --reported-floor-m 1e300"), {"--reported-floor-m", "100"});
 }
 
 // The reported floor (3 cm, 0.5 deg by default) adds to the standard deviations in

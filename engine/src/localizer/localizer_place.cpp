@@ -60,7 +60,10 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     // the scan's evidence there.
     look_alikes->push_back(
         {e.pose, log_prior(e.pose, prior.carried, prior.covariance, prior.floor)});
-    e = best_near(hypothesis.pose, observation, global, kept_half_theta(hypothesis));
+    const double half_theta = kept_half_theta(hypothesis);
+    e = half_theta > 2.0 * global.step_theta
+            ? best_near(hypothesis.pose, observation, global, half_theta)
+            : near;  // the same window as near's
     hypothesis.pose = e.pose;
     e.verdict = Verdict::NotLocalized;
     return;
