@@ -120,6 +120,7 @@ nlohmann::json step_json(const TrackStep& step, const std::optional<Pose2>& trut
                          {"search", search},
                          {"jump_rejected", step.status.jump_rejected},
                          {"confirming", step.status.confirming},
+                         {"held_back", to_string(step.status.held_back)},
                          {"time", step.time},
                          {"pose", cli::to_json(e.pose)},
                          {"verdict", to_string(e.verdict)},

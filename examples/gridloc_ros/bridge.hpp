@@ -58,6 +58,8 @@ struct Answer {
   int hypotheses = 0;
   double elapsed_ms = 0.0;
   int search_slices_done = 0, search_slices = 0;  ///< a re-search under way
+  /// Why the answer is "not localized" ("none" otherwise): gridloc::HeldBack's name.
+  std::string held_back = "none";
 };
 
 /// One Localizer (engine/include/gridloc/engine/localizer/localizer.hpp) built on a map and a

@@ -51,7 +51,8 @@ std::string answer_json(const Answer& a) {
   std::ostringstream out;
   out << "{\"verdict\":\"" << a.verdict << "\",\"confidence\":" << a.confidence
       << ",\"x\":" << a.pose.x << ",\"y\":" << a.pose.y << ",\"theta\":" << a.pose.theta
-      << ",\"hypotheses\":" << a.hypotheses << ",\"elapsed_ms\":" << a.elapsed_ms << "}";
+      << ",\"hypotheses\":" << a.hypotheses << ",\"elapsed_ms\":" << a.elapsed_ms
+      << ",\"held_back\":\"" << a.held_back << "\"}";
   return out.str();
 }
 
@@ -368,6 +369,10 @@ class Node {
     value("update_ms", a.elapsed_ms);
     value("search_slices_done", a.search_slices_done);
     value("search_slices", a.search_slices);
+    diagnostic_msgs::KeyValue held_back;
+    held_back.key = "held_back";
+    held_back.value = a.held_back;
+    status.values.push_back(held_back);
     array.status.push_back(status);
     diagnostics_pub_.publish(array);
   }

@@ -101,7 +101,13 @@ TEST(Tracking, ASeededSlipIsNotLocalizedUntilTheTrackHasHeld) {
     localizer.add_odometry(odometry[k]);
     localizer.add_observation(double(k), scan_at(map, path[k]));
     const Estimate e = localizer.estimate();
-    rejected += localizer.status().jump_rejected;
+    const LocalizerStatus status = localizer.status();
+    rejected += status.jump_rejected;
+    // Every answer held back names why, and the gate's refusals say so.
+    EXPECT_EQ(e.verdict == Verdict::NotLocalized, status.held_back != HeldBack::None) << k;
+    if (status.jump_rejected) {
+      EXPECT_EQ(status.held_back, HeldBack::JumpRejected) << to_string(status.held_back);
+    }
     if (e.verdict != Verdict::Localized) continue;
     ++localized;
     EXPECT_LE(std::hypot(e.pose.x - path[k].x, e.pose.y - path[k].y), 0.1) << "step " << k;
@@ -147,6 +153,8 @@ TEST(Tracking, AScanFittingFarWorseThanUsualIsNotLocalizedUnderTheFitRule) {
       if (k == hidden) {
         EXPECT_EQ(e.verdict, ratio > 0.0 ? Verdict::NotLocalized : Verdict::Localized)
             << "ratio " << ratio;
+        EXPECT_EQ(localizer.status().held_back, ratio > 0.0 ? HeldBack::WeakFit : HeldBack::None)
+            << to_string(localizer.status().held_back);
         EXPECT_LE(std::hypot(e.pose.x - path[k].x, e.pose.y - path[k].y), 0.1) << ratio;
       }
     }
@@ -234,6 +242,10 @@ TEST(Tracking, AFarWinnerJoinsAsAPlaceRatherThanMovingTheTrack) {
       }
       if (k == first_shifted) {  // split, the track stayed; followed, the place moved
         EXPECT_TRUE(split ? off <= 0.2 : off >= 0.4) << split << ": " << off << " m off";
+        if (split) {
+          EXPECT_EQ(localizer.status().held_back, HeldBack::SplitOff)
+              << to_string(localizer.status().held_back);
+        }
       }
     }
     EXPECT_TRUE(right(localizer.estimate(), path.back())) << split;

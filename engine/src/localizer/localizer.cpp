@@ -120,6 +120,16 @@ CorrelationOptions with_laser_reach(const LocalizerOptions& options, const Laser
   return correlation;
 }
 
+/// Why the answer `e` from the weighted `places` (heaviest first) is not `localized`.
+HeldBack held_back(const std::vector<TrackedHypothesis>& places, const Estimate& e,
+                   const HypothesisWeightOptions& weights) {
+  if (e.verdict != Verdict::NotLocalized) return HeldBack::None;
+  if (places.empty()) return HeldBack::NoPlace;
+  const TrackedHypothesis& heaviest = places.front();
+  if (heaviest.newcomer && heaviest.driven_m < weights.newcomer_settle_m) return HeldBack::Newcomer;
+  return heaviest.held_back;
+}
+
 bool finite(const Pose2& pose) {
   return std::isfinite(pose.x) && std::isfinite(pose.y) && std::isfinite(pose.theta);
 }
@@ -287,10 +297,12 @@ void Localizer::localize(LocalizerState next, const Pose2& taken_at,
   Estimate e = next.set.hypotheses.empty() ? searched.value_or(next.estimate.value_or(Estimate{}))
                                            : weighted_estimate(next.set.hypotheses, weights);
   if (next.set.hypotheses.empty()) e.verdict = Verdict::NotLocalized;
+  next.status.held_back = held_back(next.set.hypotheses, e, weights);
   const bool had_reference = next.gate.has_reference();
   if (e.verdict == Verdict::Localized && !next.gate.admit({e.pose, e.covariance, taken_at})) {
     e.verdict = Verdict::NotLocalized;
     (had_reference ? next.status.jump_rejected : next.status.confirming) = true;
+    next.status.held_back = had_reference ? HeldBack::JumpRejected : HeldBack::Confirming;
   }
   // After every decision, only what the caller reads grows; an estimate carried over from
   // the last update (no place left, no search) has its floor already.

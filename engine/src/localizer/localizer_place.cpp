@@ -29,9 +29,13 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   const bool miss = hypothesis.usual_fit > 0.0
                         ? e.normalized_score < options_.miss_fit_ratio * hypothesis.usual_fit
                         : e.verdict == Verdict::NotLocalized;
+  hypothesis.held_back = HeldBack::None;
   if (miss) {
     ++hypothesis.misses;
-    if (!place_on_weak_fit(hypothesis, e)) e.verdict = Verdict::NotLocalized;
+    if (!place_on_weak_fit(hypothesis, e)) {
+      e.verdict = Verdict::NotLocalized;
+      hypothesis.held_back = HeldBack::Miss;
+    }
     return;
   }
   hypothesis.misses = 0;
@@ -66,17 +70,20 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
             : near;  // the same window as near's
     hypothesis.pose = e.pose;
     e.verdict = Verdict::NotLocalized;
+    hypothesis.held_back = HeldBack::SplitOff;
     return;
   }
   if (takes) {
     // A step the odometry did not make is not trusted yet (the place follows it: a slip
     // holds at the next observation, a wrong match does not).
-    if (surprise) e.verdict = Verdict::NotLocalized;
-    if (weak) e.verdict = Verdict::NotLocalized;
     // A scan's window whose own spread is wider than a localized place's is not one (the
     // place the odometry holds is asked the same of its fused covariance).
-    if (laser_ && !tight(e.covariance)) e.verdict = Verdict::NotLocalized;
-    if (laser_ && turns_on_a_weak_fit(hypothesis, e)) e.verdict = Verdict::NotLocalized;
+    hypothesis.held_back = surprise                                       ? HeldBack::Surprise
+                           : weak                                         ? HeldBack::WeakFit
+                           : laser_ && !tight(e.covariance)               ? HeldBack::WideWindow
+                           : laser_ && turns_on_a_weak_fit(hypothesis, e) ? HeldBack::TurnOnWeakFit
+                                                                          : HeldBack::None;
+    if (hypothesis.held_back != HeldBack::None) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
     hypothesis.confirmed = true;
@@ -85,6 +92,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   if (!odometry_holds) {  // look-alikes in the window, and the odometry's place is not one
     hypothesis.pose = e.pose;
     e.verdict = Verdict::NotLocalized;
+    hypothesis.held_back = HeldBack::LookAlikes;
     return;
   }
   // The scan fits the odometry's place as well as any: the place stays there, the window's
@@ -96,8 +104,11 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
                               normalize_angle(near.pose.theta - e.pose.theta));
     hypothesis.covariance = fused(hypothesis.covariance, e.covariance + gap * gap.transpose());
   }
-  e.verdict = tight(hypothesis.covariance) && hypothesis.confirmed && !weak ? Verdict::Localized
-                                                                            : Verdict::NotLocalized;
+  hypothesis.held_back = !tight(hypothesis.covariance) ? HeldBack::WideCarried
+                         : !hypothesis.confirmed       ? HeldBack::Unconfirmed
+                         : weak                        ? HeldBack::WeakFit
+                                                       : HeldBack::None;
+  e.verdict = hypothesis.held_back == HeldBack::None ? Verdict::Localized : Verdict::NotLocalized;
 }
 
 bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const {
@@ -108,7 +119,10 @@ bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) co
   hypothesis.pose = e.pose;
   hypothesis.covariance = fused(hypothesis.covariance, e.covariance);
   const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
-  e.verdict = tight(hypothesis.covariance) && !weak ? Verdict::Localized : Verdict::NotLocalized;
+  hypothesis.held_back = !tight(hypothesis.covariance) ? HeldBack::WideCarried
+                         : weak                        ? HeldBack::WeakFit
+                                                       : HeldBack::None;
+  e.verdict = hypothesis.held_back == HeldBack::None ? Verdict::Localized : Verdict::NotLocalized;
   return true;
 }
 

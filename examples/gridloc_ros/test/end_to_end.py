@@ -165,6 +165,8 @@ def check_answer(answer, label):
 def check_guess(answer, label):
     """A first place from no prior, not yet borne out by a drive: right, `not localized`."""
     assert not answer.success, f"{label}: localized from one scan: {answer.message}"
+    held_back = json.loads(answer.message)["held_back"]
+    assert held_back == "confirming", f"{label}: held back as {held_back}: {answer.message}"
     print(f"{label}: not localized yet (confirming), {right_pose(answer, label, 'not localized')}")
 
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gridloc/engine/estimate.hpp"
+#include "gridloc/engine/localizer/held_back.hpp"
 
 namespace gridloc {
 
@@ -48,6 +49,8 @@ struct TrackedHypothesis {
   /// before it has been carried over HypothesisWeightOptions::newcomer_settle_m of driving.
   bool newcomer = false;
   double driven_m = 0.0;  ///< odometry path since it entered
+  /// Why the latest observation did not place it `localized` (None when it did).
+  HeldBack held_back = HeldBack::None;
 };
 
 struct HypothesisSet {

@@ -198,6 +198,9 @@ struct LocalizerStatus {
   /// The answer was `localized` but is the first place from no prior, not yet borne out by
   /// the drive (JumpGateOptions::settle_first): `not localized` meanwhile.
   bool confirming = false;
+  /// Why the answer is `not localized` (HeldBack::None when it is `localized` or
+  /// `ambiguous`): the heaviest place's reason, or the jump gate's.
+  HeldBack held_back = HeldBack::None;
 };
 
 /// What the Localizer holds between calls (see Localizer).
