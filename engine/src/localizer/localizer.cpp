@@ -404,6 +404,9 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
     std::optional<TrackedHypothesis> carried =
         follow_one(hypothesis, moved, next.travelled_m, observation, &look_alikes);
     if (!carried) continue;
+    // A window whose winner explains nothing (a miss) has no look-alike worth a place either:
+    // each scores below its winner, and one that met the place would take it over by merging.
+    if (carried->misses > 0) look_alikes.clear();
     // A place carried so far that its window spans look-alikes splits into them: the weights,
     // not this one scan, will say which it is; the odometry's prior gives each its start.
     for (const LookAlike& look_alike : look_alikes) {

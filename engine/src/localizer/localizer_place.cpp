@@ -29,10 +29,11 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   const bool miss = hypothesis.usual_fit > 0.0
                         ? e.normalized_score < options_.miss_fit_ratio * hypothesis.usual_fit
                         : e.verdict == Verdict::NotLocalized;
+  const bool after_a_miss = hypothesis.held_back == HeldBack::Miss;
   hypothesis.held_back = HeldBack::None;
   if (miss) {
     ++hypothesis.misses;
-    if (!place_on_weak_fit(hypothesis, e)) {
+    if (!place_on_weak_fit(hypothesis, e, after_a_miss)) {
       e.verdict = Verdict::NotLocalized;
       hypothesis.held_back = HeldBack::Miss;
     }
@@ -111,7 +112,8 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   e.verdict = hypothesis.held_back == HeldBack::None ? Verdict::Localized : Verdict::NotLocalized;
 }
 
-bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const {
+bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e,
+                                  bool after_a_miss) const {
   const bool placed = hypothesis.confirmed &&
                       e.normalized_score >= options_.weak_fit_ratio * hypothesis.usual_fit &&
                       tight(e.covariance) && !surprising(hypothesis, e.pose);
@@ -120,7 +122,7 @@ bool Localizer::place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) co
   hypothesis.covariance = fused(hypothesis.covariance, e.covariance);
   const bool weak = e.normalized_score < options_.localized_fit_ratio * hypothesis.usual_fit;
   hypothesis.held_back = !tight(hypothesis.covariance) ? HeldBack::WideCarried
-                         : weak                        ? HeldBack::WeakFit
+                         : weak || after_a_miss        ? HeldBack::WeakFit
                                                        : HeldBack::None;
   e.verdict = hypothesis.held_back == HeldBack::None ? Verdict::Localized : Verdict::NotLocalized;
   return true;

@@ -68,6 +68,8 @@ struct LocalizerOptions {
   /// since the map was made (people, furniture, a door). Its covariance is fused with the
   /// carried one, and the place stays `localized` while that is tight; it still counts as a
   /// miss toward a re-search. At or above miss_fit_ratio: no such rule.
+  /// Right after a plain miss (one that placed nothing) such a weak fit still places the
+  /// place but is not `localized`: nothing vouches for where the place is since.
   double weak_fit_ratio = 0.25;
   /// A laser's window whose winner lies farther from the odometry's place than the hypothesis
   /// set merges (0.3 m or 15 deg) and either farther than the place's covariance allows (a
@@ -311,7 +313,7 @@ class Localizer {
   bool turns_on_a_weak_fit(const TrackedHypothesis& carried, const Estimate& e) const;
   /// A miss that still places the place (LocalizerOptions::weak_fit_ratio): when it does,
   /// moves the place there, fuses the covariances and sets e.verdict; else returns false.
-  bool place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e) const;
+  bool place_on_weak_fit(TrackedHypothesis& hypothesis, Estimate& e, bool after_a_miss) const;
   /// Whether a covariance is within localized_sigma_m and localized_sigma_rad.
   bool tight(const Eigen::Matrix3d& covariance) const;
   /// Whether `placed` lies farther from the carried place than its covariance allows.
