@@ -261,12 +261,13 @@ TEST(TrackRealLog, TheFirstScansLookAlikesAreKept) {
 }
 
 // orebro's held-out scans 210-219 on 2 % + 1 deg/m odometry: scans 213-219 see a place the
-// map's half barely saw (fits of 20-35 % of the usual). A missed window's look-alikes had
-// merged into the track and turned it 10-13 degrees, then lost it (3 of 10 `localized`);
-// the weak fit right after the plain miss at 213 is 0.37 m off and must not be `localized`.
+// map's half barely saw (fits of 20-35 % of the usual). A missed window's look-alike that
+// missed too merged into the track and turned it 10-13 degrees, then lost it (3 of 10
+// `localized`); kept on the odometry, the weak fit right after the plain miss at 213 is
+// 0.37 m off and must not be `localized` (5 of 10, none wrong).
 TEST(TrackRealLog, AMissedWindowsLookAlikesDoNotTurnTheTrack) {
   expect_never_wrong("orebro",
-                     "--prior-from-log --start 205 --count 20 --odometry-noise 0.02,1 --seed 1", 6);
+                     "--prior-from-log --start 205 --count 20 --odometry-noise 0.02,1 --seed 1", 5);
 }
 
 TEST_F(TrackCli, BadInputIsOneErrorLine) {

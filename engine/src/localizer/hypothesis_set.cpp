@@ -24,14 +24,10 @@ void validate(const HypothesisSetOptions& options) {
   }
 }
 
-namespace {
-
 bool have_met(const Pose2& a, const Pose2& b, const HypothesisSetOptions& options) {
   return std::hypot(a.x - b.x, a.y - b.y) <= options.merge_xy &&
          std::abs(normalize_angle(a.theta - b.theta)) <= options.merge_theta;
 }
-
-}  // namespace
 
 HypothesisSet seed_hypotheses(const Estimate& global, const HypothesisSetOptions& options) {
   validate(options);

@@ -31,11 +31,6 @@ double log_add(double a, double b) {
   return high + std::log1p(std::exp(low - high));
 }
 
-bool have_met(const Pose2& a, const Pose2& b, const HypothesisSetOptions& options) {
-  return std::hypot(a.x - b.x, a.y - b.y) <= options.merge_xy &&
-         std::abs(normalize_angle(a.theta - b.theta)) <= options.merge_theta;
-}
-
 }  // namespace
 
 void validate(const HypothesisWeightOptions& options) {

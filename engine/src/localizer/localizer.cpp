@@ -375,10 +375,7 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
                                         [](const TrackedHypothesis& h) { return h.confirmed; });
   const auto meets = [&](const TrackedHypothesis& seed) {
     return std::any_of(before.begin(), before.end(), [&](const TrackedHypothesis& h) {
-      return std::hypot(seed.pose.x - h.pose.x, seed.pose.y - h.pose.y) <=
-                 options_.hypothesis_set.merge_xy &&
-             std::abs(normalize_angle(seed.pose.theta - h.pose.theta)) <=
-                 options_.hypothesis_set.merge_theta;
+      return have_met(seed.pose, h.pose, options_.hypothesis_set);
     });
   };
   HypothesisSetOptions seeding = options_.hypothesis_set;
@@ -404,9 +401,6 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
     std::optional<TrackedHypothesis> carried =
         follow_one(hypothesis, moved, next.travelled_m, observation, &look_alikes);
     if (!carried) continue;
-    // A window whose winner explains nothing (a miss) has no look-alike worth a place either:
-    // each scores below its winner, and one that met the place would take it over by merging.
-    if (carried->misses > 0) look_alikes.clear();
     // A place carried so far that its window spans look-alikes splits into them: the weights,
     // not this one scan, will say which it is; the odometry's prior gives each its start.
     for (const LookAlike& look_alike : look_alikes) {
@@ -421,7 +415,8 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
       split.misses = 0;
       std::optional<TrackedHypothesis> placed =
           follow_one(split, Pose2{}, 0.0, observation, nullptr);
-      if (placed) followed.push_back(std::move(*placed));
+      if (!placed || takes_over_a_miss(*placed, *carried)) continue;
+      followed.push_back(std::move(*placed));
     }
     followed.push_back(std::move(*carried));
   }
@@ -459,6 +454,12 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
   hypothesis.score = e.score;
   hypothesis.estimate = std::move(e);
   return hypothesis;
+}
+
+bool Localizer::takes_over_a_miss(const TrackedHypothesis& look_alike,
+                                  const TrackedHypothesis& carried) const {
+  return carried.misses > 0 && look_alike.held_back == HeldBack::Miss &&
+         have_met(look_alike.pose, carried.pose, options_.hypothesis_set);
 }
 
 Estimate Localizer::estimate() const {

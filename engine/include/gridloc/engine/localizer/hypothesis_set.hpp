@@ -29,6 +29,9 @@ struct HypothesisSetOptions {
 /// Checks the options; throws gridloc::Error naming the field.
 void validate(const HypothesisSetOptions& options);
 
+/// Whether two places lie within merge_xy and merge_theta of each other (they merge).
+bool have_met(const Pose2& a, const Pose2& b, const HypothesisSetOptions& options);
+
 /// One tracked pose: where it puts the robot (world frame) at the odometry pose of the
 /// latest observation, and that observation's windowed estimate around it.
 struct TrackedHypothesis {

