@@ -47,7 +47,7 @@ struct LocalizeArgs {
 /// The estimator kind of --estimator, checked against --repeat, --scan and --prior;
 /// gridloc::Error naming the option otherwise.
 EstimatorKind checked_kind(const LocalizeArgs& args) {
-  if (args.repeat < 1) throw Error("--repeat must be >= 1");
+  require_flag(args.repeat >= 1, "--repeat", args.repeat, "must be >= 1");
   const EstimatorKind kind = parse_estimator_kind(args.estimator);
   if (!args.sectors.empty() && !is_sector_estimator(kind)) {
     throw Error("--sectors needs --estimator sectors or sectors+correlation");
@@ -65,22 +65,16 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
         "--coarse must be a cell size in [0, 0.5] m (0: the exact search; leave it out for "
         "the automatic choice)");
   }
-  if (args.coarse_places < 1 || args.coarse_places > kMaxPlaces) {
-    throw Error("--coarse-places must lie in [1, 100], got " + std::to_string(args.coarse_places));
-  }
-  if (!(args.through_wall_ratio >= 0.0) || !std::isfinite(args.through_wall_ratio)) {
-    throw Error("--through-wall-ratio must be finite and >= 0 (0: no check), got " +
-                std::to_string(args.through_wall_ratio));
-  }
+  require_flag(args.coarse_places >= 1 && args.coarse_places <= kMaxPlaces, "--coarse-places",
+               args.coarse_places, "must lie in [1, 100]");
+  require_flag(args.through_wall_ratio >= 0.0 && std::isfinite(args.through_wall_ratio),
+               "--through-wall-ratio", args.through_wall_ratio,
+               "must be finite and >= 0 (0: no check)");
   // Bounded so that their squares stay finite: a floor is centimetres and a degree or two.
-  if (!(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0)) {
-    throw Error("--reported-floor-m must lie in [0, 100] m, got " +
-                std::to_string(args.reported_floor_m));
-  }
-  if (!(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0)) {
-    throw Error("--reported-floor-deg must lie in [0, 180] degrees, got " +
-                std::to_string(args.reported_floor_deg));
-  }
+  require_flag(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0, "--reported-floor-m",
+               args.reported_floor_m, "must lie in [0, 100] m");
+  require_flag(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0,
+               "--reported-floor-deg", args.reported_floor_deg, "must lie in [0, 180] degrees");
   if (kind == EstimatorKind::Icp && args.inputs.whole_map) {
     throw Error(
         "--estimator icp needs --prior: ICP only refines a pose (use correlation+icp with "

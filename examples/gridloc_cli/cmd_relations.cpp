@@ -130,9 +130,7 @@ void run(const RelationsArgs& args) {
     trials.open(args.trials_out);
     if (!trials) throw Error("--trials-out: cannot write " + args.trials_out);
   }
-  if (args.plot_pairs < 1) {
-    throw Error("--plot-pairs must be at least 1, got " + std::to_string(args.plot_pairs));
-  }
+  require_flag(args.plot_pairs >= 1, "--plot-pairs", args.plot_pairs, "must be at least 1");
   if (!args.plot.empty() && !std::ofstream(args.plot)) {
     throw Error("--plot: cannot write " + args.plot);
   }

@@ -17,6 +17,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
+#include "options.hpp"
 #include "output_files.hpp"
 #include "plot.hpp"
 #include "sectors_render.hpp"
@@ -99,10 +100,8 @@ void print_table(const SectorsArgs& args, const SectorMap& sectors) {
 }
 
 void run(const SectorsArgs& args) {
-  if (!(args.cell_m > 0.0) || !std::isfinite(args.cell_m)) {
-    throw Error("--cell must be a positive cell size in metres, got " +
-                std::to_string(args.cell_m));
-  }
+  require_flag(args.cell_m > 0.0 && std::isfinite(args.cell_m), "--cell", args.cell_m,
+               "must be a positive cell size in metres");
   const PolygonMap map = load_polygon_map(input_path(args.polygons, "--polygons"), limits());
   // The folder first: a bad --out fails before the sectors are computed.
   if (!args.out.empty()) output_folder(args.out);

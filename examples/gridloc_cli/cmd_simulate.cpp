@@ -31,9 +31,8 @@ struct SimulateArgs {
 
 /// A laser scan at the pose, as `angle_rad,range_m` lines (what `localize --scan` reads).
 std::string scan_csv(const SimulateArgs& args, const OccupancyMap& map, const Pose2& pose) {
-  if (args.beams < 1 || args.beams > 100000) {
-    throw Error("--beams must lie in [1, 100000], got " + std::to_string(args.beams));
-  }
+  require_flag(args.beams >= 1 && args.beams <= 100000, "--beams", args.beams,
+               "must lie in [1, 100000]");
   const RangeScan scan =
       simulate_scan(map, pose, args.beams, args.max_range, args.sim.range_sigma_m, args.sim.seed);
   std::ostringstream csv;
@@ -64,9 +63,8 @@ void run(const SimulateArgs& args) {
   }
   SonarSimOptions options = args.sim;
   if (args.realistic) options = SonarSimOptions::realistic(args.sim.seed);
-  if (args.firings < 1 || args.firings > 100) {
-    throw Error("--firings must lie in [1, 100], got " + std::to_string(args.firings));
-  }
+  require_flag(args.firings >= 1 && args.firings <= 100, "--firings", args.firings,
+               "must lie in [1, 100]");
   const OccupancyMap map = load_map(args.map, args.octomap.slice);
   const SonarRing ring = load_sonar_ring(input_path(args.ring, "--ring"), limits());
   // Consecutive firings from the same pose draw their noise independently: the first from

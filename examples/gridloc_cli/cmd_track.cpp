@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "gridloc/engine/evaluation/log_tracking.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/sensors/gfs_odometry.hpp"
 #include "gridloc/sensors/log_split.hpp"
 #include "limit_options.hpp"
@@ -153,26 +154,16 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   if (int(args.global) + int(!args.prior.empty()) + int(args.prior_from_log) != 1) {
     throw Error("give one of --prior x,y,theta, --prior-from-log or --global");
   }
-  if (args.trial_count < 0) throw Error("--trials must be >= 0");
+  require_flag(args.trial_count >= 0, "--trials", args.trial_count, "must be >= 0");
   const double min_turn_deg = rad2deg(LocalizerOptions{}.min_half_theta);
-  if (!(args.max_window_turn_deg >= min_turn_deg) || !std::isfinite(args.max_window_turn_deg)) {
-    std::ostringstream m;
-    m << "--max-window-turn must be a finite number of degrees >= " << min_turn_deg << ", got "
-      << args.max_window_turn_deg;
-    throw Error(m.str());
-  }
+  require_flag(args.max_window_turn_deg >= min_turn_deg && std::isfinite(args.max_window_turn_deg),
+               "--max-window-turn", args.max_window_turn_deg,
+               "must be a finite number of degrees >= " + message_number(min_turn_deg));
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
-  if (!(args.resolution >= 0.0) || !std::isfinite(args.resolution)) {
-    std::ostringstream m;
-    m << "--resolution must be a finite cell size >= 0 (0: the map's cell), got "
-      << args.resolution;
-    throw Error(m.str());
-  }
-  if (!(args.weak_fit_ratio >= 0.0 && args.weak_fit_ratio <= 1.0)) {
-    std::ostringstream m;
-    m << "--weak-fit-ratio must lie in [0, 1], got " << args.weak_fit_ratio;
-    throw Error(m.str());
-  }
+  require_flag(args.resolution >= 0.0 && std::isfinite(args.resolution), "--resolution",
+               args.resolution, "must be a finite cell size >= 0 (0: the map's cell)");
+  require_flag(args.weak_fit_ratio >= 0.0 && args.weak_fit_ratio <= 1.0, "--weak-fit-ratio",
+               args.weak_fit_ratio, "must lie in [0, 1]");
   LogTrackingOptions options;
   options.localizer.correlation.limits = limits();
   options.localizer.correlation.resolution =

@@ -1,6 +1,7 @@
 // gridloc eval --drive: the drive protocol's options, run, table and JSON.
 #include "eval_drive.hpp"
 #include "limit_options.hpp"
+#include "options.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -19,11 +20,9 @@ namespace {
 
 /// Refuses the other protocols' options, and drive options out of range, by their flags.
 void check_args(const EvalArgs& args, const DriveArgs& drive) {
-  if (!(drive.drive_m > 0.0) || !(drive.drive_m <= 20.0)) {
-    throw Error(drive.distance_option + " must lie in (0, 20] m, got " +
-                std::to_string(drive.drive_m));
-  }
-  if (drive.firings < 2) throw Error(drive.firings_option + " must be at least 2");
+  require_flag(drive.drive_m > 0.0 && drive.drive_m <= 20.0, drive.distance_option, drive.drive_m,
+               "must lie in (0, 20] m");
+  require_flag(drive.firings >= 2, drive.firings_option, drive.firings, "must be at least 2");
   if (!(drive.window_m >= 0.0) || !std::isfinite(drive.window_m)) {
     throw Error(drive.window_option + " must be finite and >= 0");
   }

@@ -12,6 +12,7 @@
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "limit_options.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "stdin_input.hpp"
 
@@ -66,9 +67,8 @@ void run_sectors(const EvalArgs& args, const std::vector<std::string>& files) {
 
 /// Throws unless --step-xy is a positive cell size.
 void check_step(double step_xy) {
-  if (!(step_xy > 0.0) || !std::isfinite(step_xy)) {
-    throw Error("--step-xy must be a positive cell size in metres, got " + std::to_string(step_xy));
-  }
+  require_flag(step_xy > 0.0 && std::isfinite(step_xy), "--step-xy", step_xy,
+               "must be a positive cell size in metres");
 }
 
 /// True when --estimators names a sector estimator (they need the sector protocol).

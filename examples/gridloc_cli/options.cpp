@@ -8,6 +8,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 #include "limit_options.hpp"
 #include "stdin_input.hpp"
@@ -106,10 +107,14 @@ ScanModel parse_scan_model(const std::string& text) {
   throw Error("--scan-model must be hits, samples or rays, not '" + text + "'");
 }
 
+void require_flag(bool ok, std::string_view flag, double value, std::string_view rule) {
+  if (ok) return;
+  throw Error(std::string(flag) + " " + std::string(rule) + ", got " + message_number(value));
+}
+
 double check_arc_depth(double cells) {
-  if (!(cells >= 0.0) || !std::isfinite(cells)) {
-    throw Error("--arc-depth must be a finite number of cells >= 0, got " + std::to_string(cells));
-  }
+  require_flag(cells >= 0.0 && std::isfinite(cells), "--arc-depth", cells,
+               "must be a finite number of cells >= 0");
   return cells;
 }
 
@@ -174,9 +179,8 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.threads = threads;
   options.scan.model = parse_scan_model(scan_model);
   options.scan.free_samples = free_samples;
-  if (!(budget_ms >= 0.0) || !std::isfinite(budget_ms)) {
-    throw Error("--budget-ms must be a finite number >= 0, got " + std::to_string(budget_ms));
-  }
+  require_flag(budget_ms >= 0.0 && std::isfinite(budget_ms), "--budget-ms", budget_ms,
+               "must be a finite number >= 0");
   if (options.strategy != SearchStrategy::BranchAndBound &&
       (budget_ms > 0.0 || heading_intervals)) {
     throw Error(std::string(budget_ms > 0.0 ? "--budget-ms" : "--heading-intervals") +
@@ -185,25 +189,21 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.budget_ms = budget_ms;
   options.heading_intervals = heading_intervals;
   options.second_peak = !no_second_peak;
-  if (!(second_peak_floor >= 0.0 && second_peak_floor < 1.0)) {
-    throw Error("--second-peak-floor must lie in [0, 1), got " + std::to_string(second_peak_floor));
-  }
+  require_flag(second_peak_floor >= 0.0 && second_peak_floor < 1.0, "--second-peak-floor",
+               second_peak_floor, "must lie in [0, 1)");
   options.second_peak_floor = second_peak_floor;
-  if (hypotheses < 1 || hypotheses > 100) {
-    throw Error("--hypotheses must lie in [1, 100], got " + std::to_string(hypotheses));
-  }
+  require_flag(hypotheses >= 1 && hypotheses <= 100, "--hypotheses", hypotheses,
+               "must lie in [1, 100]");
   options.hypotheses = hypotheses;
-  if (covariance_cells < 0 || covariance_cells > 20) {
-    throw Error("--covariance-cells must lie in [0, 20], got " + std::to_string(covariance_cells));
-  }
+  require_flag(covariance_cells >= 0 && covariance_cells <= 20, "--covariance-cells",
+               covariance_cells, "must lie in [0, 20]");
   options.covariance_cells = covariance_cells;
   options.covariance_temperature = covariance_temperature;
   options.ring_covariance_temperature = ring_covariance_temperature;
   options.scan_quantization_share = scan_quantization_share;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
-  if (free_samples < 1 || free_samples > 1000) {
-    throw Error("--free-samples must lie in [1, 1000], got " + std::to_string(free_samples));
-  }
+  require_flag(free_samples >= 1 && free_samples <= 1000, "--free-samples", free_samples,
+               "must lie in [1, 1000]");
 }
 
 void OctomapArgs::add_to(CLI::App* cmd) {

@@ -2,6 +2,7 @@
 // Parsing helpers shared by the gridloc subcommands.
 #include <CLI/CLI.hpp>
 #include <string>
+#include <string_view>
 
 #include "gridloc/engine/correlation/estimator.hpp"
 #include "gridloc/grids/octomap_io.hpp"
@@ -26,6 +27,10 @@ ScanModel parse_scan_model(const std::string& text);
 std::string to_string(ArcRule rule);
 /// Checks --arc-depth (cells, >= 0, finite).
 double check_arc_depth(double cells);
+
+/// Throws "<flag> <rule>, got <value>" unless `ok`: every command's check of a number has
+/// this one form (the library's require_option names its owner and field the same way).
+void require_flag(bool ok, std::string_view flag, double value, std::string_view rule);
 
 /// The search options `localize` and `eval` share: registered once, applied once.
 struct SearchArgs {

@@ -58,11 +58,11 @@ std::vector<Pose2> parse_team_poses(const std::string& text) {
 void parse_link_noise(const std::string& text, CameraModel& camera) {
   const auto comma = text.find(',');
   const double length = number_in(text.substr(0, comma), "--link-noise sigma");
-  if (length < 0.0) throw Error("--link-noise: the length sigma must be >= 0");
+  require_flag(length >= 0.0, "--link-noise", length, "length sigma must be >= 0");
   camera.length_sigma_at_max_m = length;
   if (comma == std::string::npos) return;
   const double bearing = number_in(text.substr(comma + 1), "--link-noise bearing");
-  if (bearing < 0.0) throw Error("--link-noise: the bearing sigma must be >= 0");
+  require_flag(bearing >= 0.0, "--link-noise", bearing, "bearing sigma must be >= 0");
   camera.bearing_sigma = bearing * kDeg;
 }
 

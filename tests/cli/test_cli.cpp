@@ -448,6 +448,26 @@ TEST_F(Cli, SeveralFiringsGoThroughTheEchoFilter) {
                    "--firings");
 }
 
+// Every command checks a number the same way (issue 31): "<flag> <rule>, got <value>", the
+// value as the user wrote it (not std::to_string's six decimals).
+TEST_F(Cli, ANumberOutOfRangeIsOneMessageForm) {
+  const std::string room_l = quote(test::map_path("room_l"));
+  const std::string simulate = "simulate --map " + room_l + " --pose 2,2,0 ";
+  expect_cli_error(run_cli(dir, simulate + "--firings 0"),
+                   {"--firings must lie in [1, 100], got 0"});
+  expect_cli_error(run_cli(dir, simulate + "--scan --beams 0"),
+                   {"--beams must lie in [1, 100000], got 0"});
+  const std::string readings = dir.file("readings.json");
+  ASSERT_EQ(run_cli(dir, simulate + "--out " + quote(readings)).status, 0);
+  const std::string localize =
+      "localize --map " + room_l + " --readings " + quote(readings) + " --global ";
+  expect_cli_error(run_cli(dir, localize + "--repeat 0"), {"--repeat must be >= 1, got 0"});
+  expect_cli_error(run_cli(dir, localize + "--second-peak-floor 1.5"),
+                   {"--second-peak-floor must lie in [0, 1), got 1.5"});
+  expect_cli_error(run_cli(dir, localize + "--budget-ms -0.5"),
+                   {"--budget-ms must be a finite number >= 0, got -0.5"});
+}
+
 TEST_F(Cli, LocalizeGivesTheVerdict) {
   const std::string room_l = test::map_path("room_l");
   const CliRun sim = run_cli(dir, "simulate --map " + quote(room_l) + " --pose 2.4,1.6,0.3");
