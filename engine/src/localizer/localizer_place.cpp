@@ -75,15 +75,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     return;
   }
   if (takes) {
-    // A step the odometry did not make is not trusted yet (the place follows it: a slip
-    // holds at the next observation, a wrong match does not).
-    // A scan's window whose own spread is wider than a localized place's is not one (the
-    // place the odometry holds is asked the same of its fused covariance).
-    hypothesis.held_back = surprise                                       ? HeldBack::Surprise
-                           : weak                                         ? HeldBack::WeakFit
-                           : laser_ && !tight(e.covariance)               ? HeldBack::WideWindow
-                           : laser_ && turns_on_a_weak_fit(hypothesis, e) ? HeldBack::TurnOnWeakFit
-                                                                          : HeldBack::None;
+    hypothesis.held_back = moved_held_back(hypothesis, e, surprise, weak);
     if (hypothesis.held_back != HeldBack::None) e.verdict = Verdict::NotLocalized;
     hypothesis.pose = e.pose;
     hypothesis.covariance = e.covariance;
@@ -96,6 +88,24 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     hypothesis.held_back = HeldBack::LookAlikes;
     return;
   }
+  keep_odometry_place(hypothesis, e, near, fits_as_usual, weak);
+}
+
+HeldBack Localizer::moved_held_back(const TrackedHypothesis& carried, const Estimate& e,
+                                    bool surprise, bool weak) const {
+  // A step the odometry did not make is not trusted yet (the place follows it: a slip holds
+  // at the next observation, a wrong match does not). A scan's window whose own spread is
+  // wider than a localized place's is not one (the place the odometry holds is asked the
+  // same of its fused covariance).
+  return surprise                                    ? HeldBack::Surprise
+         : weak                                      ? HeldBack::WeakFit
+         : laser_ && !tight(e.covariance)            ? HeldBack::WideWindow
+         : laser_ && turns_on_a_weak_fit(carried, e) ? HeldBack::TurnOnWeakFit
+                                                     : HeldBack::None;
+}
+
+void Localizer::keep_odometry_place(TrackedHypothesis& hypothesis, Estimate& e,
+                                    const Estimate& near, bool fits_as_usual, bool weak) const {
   // The scan fits the odometry's place as well as any: the place stays there, the window's
   // spread widened by the gap between its winner and that place narrows the grown covariance
   // (along a corridor the gap keeps it wide), and the place stays `localized` while tight.

@@ -304,6 +304,14 @@ class Localizer {
   /// `look_alikes` (when given) instead of moving the place.
   void place(TrackedHypothesis& hypothesis, Estimate& e, const Observation& observation,
              const SearchWindow& global, std::vector<LookAlike>* look_alikes = nullptr) const;
+  /// Why a window that moves the `carried` place to its winner `e` is not `localized`: a
+  /// `surprise`-ing step, a `weak` fit, a wide window, a turn on a weak fit (None: it is).
+  HeldBack moved_held_back(const TrackedHypothesis& carried, const Estimate& e, bool surprise,
+                           bool weak) const;
+  /// The place stays where the odometry carried it (`near`, the best within two cells),
+  /// its covariance narrowed by the window `e` when it `fits_as_usual`; sets e.verdict.
+  void keep_odometry_place(TrackedHypothesis& hypothesis, Estimate& e, const Estimate& near,
+                           bool fits_as_usual, bool weak) const;
   /// Whether a look-alike split off a `carried` place that missed misses too and meets it:
   /// it explains the scan no better, and merging would hand it the place (orebro's held-out
   /// scans 213-219: turned 10-13 degrees, then lost), so it is not kept.
