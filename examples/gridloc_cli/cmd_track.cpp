@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -68,7 +69,8 @@ struct TrackTally {
   std::vector<double> times_ms;
   std::vector<double> losses_m;  ///< path driven in each run of answers not `localized`
   std::optional<TrackStep> last_localized;
-  std::optional<double> loss_from_m;  ///< where the current loss began (path driven)
+  std::optional<double> loss_from_m;     ///< where the current loss began (path driven)
+  std::map<std::string, int> held_back;  ///< scans not localized, by the rule that held them
 
   void add(const TrackStep& step, bool truth) {
     ++steps;
@@ -80,6 +82,7 @@ struct TrackTally {
     localized += verdict == Verdict::Localized;
     ambiguous += verdict == Verdict::Ambiguous;
     not_localized += verdict == Verdict::NotLocalized;
+    if (verdict == Verdict::NotLocalized) ++held_back[to_string(step.status.held_back)];
     if (verdict != Verdict::Localized) {
       if (!loss_from_m) loss_from_m = step.travelled_m;
       return;
@@ -238,6 +241,15 @@ void print_summary(const TrackTally& tally, bool truth) {
       quantile(tally.times_ms, 0.5), quantile(tally.times_ms, 0.99), quantile(tally.times_ms, 1.0),
       tally.searches, tally.jumps, tally.worst_jump_m, tally.rejected_jumps,
       tally.losses_m.size() + (tally.loss_from_m ? 1 : 0), quantile(tally.losses_m, 1.0));
+  if (!tally.held_back.empty()) {
+    std::vector<std::pair<std::string, int>> reasons(tally.held_back.begin(),
+                                                     tally.held_back.end());
+    std::stable_sort(reasons.begin(), reasons.end(),
+                     [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::printf("not localized, held back by:");
+    for (const auto& [reason, count] : reasons) std::printf(" %s %d", reason.c_str(), count);
+    std::printf("\n");
+  }
   if (truth && tally.localized > 0) {
     std::printf("localized: mean error %.3f m, %.2f deg; %d beyond 10 cm or 2 deg\n",
                 tally.error_sum_m / tally.localized, tally.error_sum_deg / tally.localized,

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -110,6 +111,27 @@ TEST_F(TrackCli, GloballyTheDriveFavoursTheTruthWithoutAWrongAnswer) {
   const nlohmann::json& last = steps.back();
   EXPECT_LE(last["error_m"].get<double>(), 0.05) << last.dump();
   EXPECT_GT(last["alternatives"][0]["weight"].get<double>(), 0.5) << last.dump();
+}
+
+// From no prior in a corridor of look-alikes the answer is `ambiguous`, then the first place
+// waits for the drive to bear it out: every answer held back names its rule in the JSON
+// (`held_back`), and the summary counts them by rule.
+TEST_F(TrackCli, AnswersHeldBackNameTheRuleAndTheSummaryCountsThem) {
+  const std::vector<nlohmann::json> steps = track("--global");
+  std::map<std::string, int> held_back;
+  for (const nlohmann::json& step : steps) {
+    EXPECT_EQ(step["verdict"] == "not localized", step["held_back"] != "none") << step.dump();
+    if (step["verdict"] == "not localized") ++held_back[step["held_back"].get<std::string>()];
+  }
+  ASSERT_GT(held_back["confirming"], 0);
+  const test::CliRun run = run_cli(
+      dir, "track --map " + quote(map) + " --log " + quote(log) + " --max-range 3 --global");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("not localized, held back by:"), std::string::npos) << run.out;
+  for (const auto& [reason, count] : held_back) {
+    EXPECT_NE(run.out.find(" " + reason + " " + std::to_string(count)), std::string::npos)
+        << reason << " " << count << ": " << run.out;
+  }
 }
 
 TEST_F(TrackCli, OdometryFromOdomLines) {
