@@ -47,7 +47,7 @@ struct TrackArgs {
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
-  bool keep_re_searches = false;
+  bool keep_re_searches = false, unfused_positions = false;
   int every = 1;
   std::size_t start = 0, count = 0;
   double max_range = 20.0, resolution = 0.0, prior_sigma_m = 0.1, prior_sigma_deg = 5.0;
@@ -183,6 +183,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.resolution = args.search_resolution;
   options.localizer.research.drop_once_localized = !args.keep_re_searches;
+  options.localizer.fuse_carried_position = !args.unfused_positions;
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
   options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
       model.frac;
@@ -399,6 +400,9 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_flag("--keep-re-searches", args.keep_re_searches,
                 "run a re-search to its end even once the track is localized again on one place "
                 "(by default it is dropped then)");
+  cmd->add_flag("--unfused-positions", args.unfused_positions,
+                "place the track at each window's winner (by default its position is fused with "
+                "where the odometry carried the place)");
   cmd->add_option("--max-range", args.max_range, "laser returns beyond this are no return (m)")
       ->capture_default_str();
   cmd->add_option("--resolution", args.resolution,

@@ -72,6 +72,7 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
           options.first_drop_ratio, "must lie in (0, 1]");
   require_non_negative(options.reported_floor_m, "reported_floor_m");
   require_non_negative(options.reported_floor_rad, "reported_floor_rad");
+  require_non_negative(options.fused_window_error_m, "fused_window_error_m");
   require_share(options.turn_fit_ratio, "turn_fit_ratio");
   require_non_negative(options.odometry_turn_error_per_rad, "odometry_turn_error_per_rad");
   require_non_negative(options.kept_heading_sigmas, "kept_heading_sigmas");

@@ -77,9 +77,7 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
   if (takes) {
     hypothesis.held_back = moved_held_back(hypothesis, e, surprise, weak);
     if (hypothesis.held_back != HeldBack::None) e.verdict = Verdict::NotLocalized;
-    hypothesis.pose = e.pose;
-    hypothesis.covariance = e.covariance;
-    hypothesis.confirmed = true;
+    take_winner(hypothesis, e);
     return;
   }
   if (!odometry_holds) {  // look-alikes in the window, and the odometry's place is not one
@@ -89,6 +87,33 @@ void Localizer::place(TrackedHypothesis& hypothesis, Estimate& e, const Observat
     return;
   }
   keep_odometry_place(hypothesis, e, near, fits_as_usual, weak);
+}
+
+void Localizer::take_winner(TrackedHypothesis& hypothesis, const Estimate& e) const {
+  const bool fuses = options_.fuse_carried_position && laser_ && hypothesis.confirmed &&
+                     hypothesis.held_back == HeldBack::None;
+  if (!fuses) {
+    hypothesis.pose = e.pose;
+    hypothesis.covariance = e.covariance;
+  } else {
+    // The window's winner and where the odometry carried the place, two estimates of one
+    // position: the Kalman update weighs them by their covariances (the window's widened by
+    // the map's error it does not see). The heading is the window's.
+    const Eigen::Matrix2d carried = hypothesis.covariance.topLeftCorner<2, 2>();
+    const double unseen = options_.fused_window_error_m * options_.fused_window_error_m;
+    const Eigen::Matrix2d window =
+        e.covariance.topLeftCorner<2, 2>() + unseen * Eigen::Matrix2d::Identity();
+    const Eigen::Matrix2d gain =
+        carried * (carried + window + 1e-15 * Eigen::Matrix2d::Identity()).inverse();
+    const Eigen::Vector2d position =
+        Eigen::Vector2d(hypothesis.pose.x, hypothesis.pose.y) +
+        gain * Eigen::Vector2d(e.pose.x - hypothesis.pose.x, e.pose.y - hypothesis.pose.y);
+    hypothesis.pose = Pose2{position.x(), position.y(), e.pose.theta};
+    hypothesis.covariance = Eigen::Matrix3d::Zero();
+    hypothesis.covariance.topLeftCorner<2, 2>() = carried - gain * carried;
+    hypothesis.covariance(2, 2) = e.covariance(2, 2);
+  }
+  hypothesis.confirmed = true;
 }
 
 HeldBack Localizer::moved_held_back(const TrackedHypothesis& carried, const Estimate& e,
