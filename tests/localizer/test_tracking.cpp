@@ -371,6 +371,40 @@ TEST(Tracking, AScansMatchIsFusedWithWhereTheOdometryCarriedThePlace) {
   test::expect_error([&] { Localizer(map, laser(), bad); }, {"fused_window_error_m", "-0.01"});
 }
 
+// LocalizerOptions::laser_localized_sigma_m: a laser's places are held to it, not to
+// localized_sigma_m (a sonar ring's). Far below any window's spread, nothing is `localized`
+// and the reason names the spread; localized_sigma_m at 0 changes nothing for a laser.
+TEST(Tracking, ALasersPlacesAreHeldToTheLaserSpreadLimit) {
+  const OccupancyMap map = two_rooms();
+  std::vector<Pose2> path;  // east through room B
+  for (double x = 8.0; x < 9.05; x += 0.1) path.push_back({x, 5.5, 0.0});
+  for (const double laser_sigma : {LocalizerOptions{}.laser_localized_sigma_m, 0.001}) {
+    LocalizerOptions options = laser_options();
+    options.localized_sigma_m = 0.0;
+    options.laser_localized_sigma_m = laser_sigma;
+    Localizer localizer(map, laser(), options);
+    localizer.add_odometry(path[0]);
+    localizer.set_prior(path[0], Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      localizer.add_odometry(path[k]);
+      localizer.add_observation(double(k), scan_at(map, path[k]));
+      const Estimate e = localizer.estimate();
+      const HeldBack held_back = localizer.status().held_back;
+      EXPECT_TRUE(right(e, path[k])) << laser_sigma << " step " << k;
+      if (laser_sigma > 0.01) {
+        EXPECT_EQ(e.verdict, Verdict::Localized) << "step " << k << ": " << to_string(held_back);
+      } else {
+        EXPECT_NE(e.verdict, Verdict::Localized) << "step " << k;
+        EXPECT_TRUE(held_back == HeldBack::WideWindow || held_back == HeldBack::WideCarried)
+            << "step " << k << ": " << to_string(held_back);
+      }
+    }
+  }
+  LocalizerOptions bad = laser_options();
+  bad.laser_localized_sigma_m = -1.0;
+  test::expect_error([&] { Localizer(map, laser(), bad); }, {"laser_localized_sigma_m"});
+}
+
 // LocalizerOptions::max_half_theta: when the odometry claims a turn the robot did not make
 // and doubts its heading entirely, the place is looked for at every heading by default, and
 // within the cap either way of the claimed heading with it (a corridor turned round, which

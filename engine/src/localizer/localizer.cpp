@@ -63,6 +63,7 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
   require_non_negative(options.step_min_m, "step_min_m");
   require_non_negative(options.step_min_rad, "step_min_rad");
   require_non_negative(options.localized_sigma_m, "localized_sigma_m");
+  require_non_negative(options.laser_localized_sigma_m, "laser_localized_sigma_m");
   require_non_negative(options.localized_sigma_rad, "localized_sigma_rad");
   require_share(options.miss_fit_ratio, "miss_fit_ratio");
   require_share(options.weak_fit_ratio, "weak_fit_ratio");

@@ -183,7 +183,8 @@ double Localizer::kept_half_theta(const TrackedHypothesis& carried) const {
 }
 
 bool Localizer::tight(const Eigen::Matrix3d& covariance) const {
-  return std::sqrt(std::max(covariance(0, 0), covariance(1, 1))) <= options_.localized_sigma_m &&
+  const double sigma_m = laser_ ? options_.laser_localized_sigma_m : options_.localized_sigma_m;
+  return std::sqrt(std::max(covariance(0, 0), covariance(1, 1))) <= sigma_m &&
          std::sqrt(covariance(2, 2)) <= options_.localized_sigma_rad;
 }
 
