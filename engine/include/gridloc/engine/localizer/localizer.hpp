@@ -63,7 +63,7 @@ struct LocalizerOptions {
   /// window always finds something, even for a robot carried elsewhere.
   double miss_fit_ratio = 0.5;
   /// A miss scoring at least this share of the place's usual normalized score still places
-  /// a confirmed place when its winner is tight (within localized_sigma_m/_rad) and lies
+  /// a confirmed place when its winner is tight (tight(): localized_sigma_m/_rad) and lies
   /// where the odometry carried the place (not surprising, step_min_m): the room changed
   /// since the map was made (people, furniture, a door). Its covariance is fused with the
   /// carried one, and the place stays `localized` while that is tight; it still counts as a
