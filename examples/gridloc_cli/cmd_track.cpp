@@ -45,6 +45,7 @@ struct TrackArgs {
   double weak_fit_ratio = LocalizerOptions{}.weak_fit_ratio;
   double max_window_turn_deg = LocalizerOptions{}.max_half_theta * 180.0 / std::numbers::pi;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
+  double cells_per_update = SlicedSearchOptions{}.cells_per_update;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
   bool keep_re_searches = false, unfused_positions = false;
@@ -118,6 +119,7 @@ nlohmann::json step_json(const TrackStep& step, const std::optional<Pose2>& trut
   if (step.status.search_slices > 0) {
     search = {{"slices_done", step.status.search_slices_done},
               {"slices", step.status.search_slices},
+              {"progress", step.status.search_progress},
               {"finished", step.status.search_finished}};
   }
   nlohmann::json line = {{"index", step.index},
@@ -181,6 +183,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   args.field.apply(options.localizer.correlation);
   options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
+  options.localizer.research.cells_per_update = args.cells_per_update;
   options.localizer.research.resolution = args.search_resolution;
   options.localizer.research.drop_once_localized = !args.keep_re_searches;
   options.localizer.fuse_carried_position = !args.unfused_positions;
@@ -394,8 +397,13 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
                   "places then refined at the map's cell (0: the map's cell, exact)")
       ->capture_default_str();
   cmd->add_option("--poses-per-slice", args.poses_per_slice,
-                  "a re-search runs one heading slice of about this many lattice poses per "
-                  "update (0: the whole search at once)")
+                  "a re-search is cut into heading slices of about this many lattice poses "
+                  "(0: the whole search at once)")
+      ->capture_default_str();
+  cmd->add_option("--cells-per-update", args.cells_per_update,
+                  "a re-search of more than one slice runs as one search advanced by about this "
+                  "many cells or points read per update (0: one heading slice per update)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_flag("--keep-re-searches", args.keep_re_searches,
                 "run a re-search to its end even once the track is localized again on one place "

@@ -363,8 +363,9 @@ TEST(Tracking, APlaceIsLookedForWithinTheHeadingCap) {
 TEST(Tracking, AReSearchRunsInSlicesAcrossUpdates) {
   const OccupancyMap map = two_rooms();
   LocalizerOptions options = laser_options();
-  options.reseed_after_m = 0.3;            // while ambiguous, search again after 0.3 m
-  options.research.poses_per_slice = 2e4;  // a search of this map in many slices
+  options.reseed_after_m = 0.3;             // while ambiguous, search again after 0.3 m
+  options.research.poses_per_slice = 2e4;   // a search of this map in many slices
+  options.research.cells_per_update = 0.0;  // heading slices (not one search a budget at a time)
   options.research.slices_per_update = 2;
   Localizer localizer(map, laser(), options);
   // Ambiguous between the two rooms (the first search answers at once, in one slice)...
@@ -400,6 +401,50 @@ TEST(Tracking, AReSearchRunsInSlicesAcrossUpdates) {
   EXPECT_TRUE(has_place_near(e, {pose.x - 6.0, pose.y, pose.theta}));
 }
 
+TEST(Tracking, AReSearchRunsAsOneSearchABudgetAnUpdate) {
+  const OccupancyMap map = two_rooms();
+  LocalizerOptions options = laser_options();
+  options.reseed_after_m = 0.3;             // while ambiguous, search again after 0.3 m
+  options.research.poses_per_slice = 2e4;   // too big a search for one update...
+  options.research.cells_per_update = 2e4;  // ...so it runs about this many cells an update
+  options.research.drop_once_localized = false;
+  Localizer localizer(map, laser(), options);
+  Pose2 pose{8.5, 5.0, 0.0};
+  localizer.add_odometry(pose);
+  localizer.add_observation(0.0, scan_at(map, pose));
+  ASSERT_EQ(localizer.estimate().verdict, Verdict::Ambiguous);
+  std::vector<int> done;
+  std::vector<double> progress;
+  bool finished = false;
+  for (int k = 1; k < 400 && !finished; ++k) {
+    pose = compose(pose, {0.0, k % 40 < 20 ? 0.05 : -0.05, 0.0});  // to and fro in the room
+    localizer.add_odometry(pose);
+    localizer.add_observation(double(k), scan_at(map, pose));
+    const LocalizerStatus status = localizer.status();
+    if (status.search_slices == 0) continue;
+    done.push_back(status.search_slices_done);
+    progress.push_back(status.search_progress);
+    finished = status.search_finished;
+    // One step an update; while under way it counts one more to come.
+    EXPECT_EQ(status.search_slices,
+              finished ? status.search_slices_done : status.search_slices_done + 1);
+  }
+  ASSERT_TRUE(finished);
+  ASSERT_GT(done.size(), 4u);  // it ran over several updates
+  for (std::size_t k = 0; k < done.size(); ++k) {
+    EXPECT_EQ(done[k], static_cast<int>(k + 1)) << k;
+    if (k > 0) {
+      EXPECT_GE(progress[k], progress[k - 1]) << k;
+    }
+  }
+  EXPECT_LT(progress.front(), 1.0);
+  EXPECT_EQ(progress.back(), 1.0);
+  // Its places joined the set: both rooms are still there, the truth among them.
+  const Estimate e = localizer.estimate();
+  EXPECT_TRUE(has_place_near(e, pose));
+  EXPECT_TRUE(has_place_near(e, {pose.x - 6.0, pose.y, pose.theta}));
+}
+
 // A re-search started by an ambiguity is dropped once a drive resolves it: the answer is
 // `localized` on one place again, so its remaining slices would only bring places the track's
 // evidence outweighs. With drop_once_localized off it runs to its end.
@@ -407,8 +452,9 @@ TEST(Tracking, AReSearchIsDroppedOnceTheTrackIsLocalizedAgain) {
   const OccupancyMap map = two_rooms();
   for (const bool drop : {true, false}) {
     LocalizerOptions options = laser_options();
-    options.reseed_after_m = 0.3;            // while ambiguous, search again after 0.3 m
-    options.research.poses_per_slice = 2e3;  // a search of this map in many slices
+    options.reseed_after_m = 0.3;             // while ambiguous, search again after 0.3 m
+    options.research.poses_per_slice = 2e3;   // a search of this map in many slices
+    options.research.cells_per_update = 0.0;  // heading slices
     options.research.drop_once_localized = drop;
     Localizer localizer(map, laser(), options);
     // Ambiguous in room B, then 0.3 m on (a re-search starts), then out of the room.

@@ -12,8 +12,10 @@
 #include "checks.hpp"
 #include "confidence.hpp"
 #include "gridloc/grids/error.hpp"
+#include "prepared_search.hpp"
 
 namespace gridloc {
+
 using namespace correlation_detail;
 namespace {
 
@@ -66,23 +68,6 @@ Pose2 lattice_to_world(const GridGeometry& geometry, const Lattice& lattice, dou
                        double iy, double it) {
   return geometry.to_world_frame({(ix + 0.5) * res, (iy + 0.5) * res, lattice.theta(it)});
 }
-
-/// One estimate()'s search of its lattice, shared by the steps after it: the levels searched,
-/// the branch-and-bound heading grids (made by the first search, reused by the next
-/// hypotheses, the refinement and the covariance) and options, and what the searches found.
-struct WindowSearch {
-  WindowSearch(const Lattice& searched, const std::vector<SearchLevel>& search_levels,
-               const BoundPyramid& bound_pyramid)
-      : lattice(searched), levels(search_levels), pyramid(bound_pyramid) {}
-  const SearchLevel& finest() const { return levels.front(); }
-
-  const Lattice& lattice;
-  const std::vector<SearchLevel>& levels;
-  const BoundPyramid& pyramid;        ///< of the finest level's grid (branch and bound)
-  std::optional<HeadingGrids> grids;  ///< branch and bound only
-  BranchAndBoundOptions bnb;
-  SearchResult result;  ///< of the first search, with the counters of all
-};
 
 /// The threads a search of `lattice` runs on (CorrelationOptions::poses_per_thread).
 int threads_for(const Lattice& lattice, const CorrelationOptions& options) {
@@ -354,26 +339,39 @@ Estimate CorrelationEstimator::estimate(const Observation& observation,
 
 Estimate CorrelationEstimator::estimate(const Observation& observation, const SearchWindow& window,
                                         int hypotheses) const {
-  if (hypotheses < 1) throw Error("estimate: hypotheses must be at least 1");
-  CorrelationOptions peak_options = options_;
-  peak_options.hypotheses = hypotheses;
-  const auto start = std::chrono::steady_clock::now();
-  const Lattice lattice = this->lattice(observation, window);  // checks both first
-  peak_options.threads = threads_for(lattice, options_);
-  const std::optional<ScanPoints> points = rigid_points(observation, options_.scan);
-  const int level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
-  const std::vector<SearchLevel> levels =
-      search_levels(observation, points ? &*points : nullptr, level_count, peak_options.threads);
-  check_resources(map_.geometry, options_, reach_,
-                  search_size(lattice, levels.front(), options_.strategy, level_count, false),
-                  positive_only_);
-  WindowSearch search(lattice, levels, pyramid_);
-  if (hypotheses_in_one_pass(options_, hypotheses)) {
-    search.bnb.keep_share = options_.second_peak_floor;
-  }
-  search_lattice(search, peak_options);
-  const LatticePose& best = search.result.best;
+  PreparedSearch prepared;
+  prepare(prepared, observation, window, hypotheses);
+  search_lattice(*prepared.search, prepared.options);
+  return conclude(prepared, observation, window);
+}
 
+void CorrelationEstimator::prepare(PreparedSearch& prepared, const Observation& observation,
+                                   const SearchWindow& window, int hypotheses) const {
+  if (hypotheses < 1) throw Error("estimate: hypotheses must be at least 1");
+  prepared.start = std::chrono::steady_clock::now();
+  prepared.options = options_;
+  prepared.options.hypotheses = hypotheses;
+  prepared.lattice = this->lattice(observation, window);  // checks both first
+  prepared.options.threads = threads_for(prepared.lattice, options_);
+  prepared.points = rigid_points(observation, options_.scan);
+  prepared.level_count = options_.strategy == SearchStrategy::Multires ? options_.levels : 1;
+  prepared.levels = search_levels(observation, prepared.points ? &*prepared.points : nullptr,
+                                  prepared.level_count, prepared.options.threads);
+  check_resources(map_.geometry, options_, reach_,
+                  search_size(prepared.lattice, prepared.levels.front(), options_.strategy,
+                              prepared.level_count, false),
+                  positive_only_);
+  prepared.search.emplace(prepared.lattice, prepared.levels, pyramid_);
+  if (hypotheses_in_one_pass(options_, hypotheses)) {
+    prepared.search->bnb.keep_share = options_.second_peak_floor;
+  }
+}
+
+Estimate CorrelationEstimator::conclude(PreparedSearch& prepared, const Observation& observation,
+                                        const SearchWindow& window) const {
+  WindowSearch& search = *prepared.search;
+  const Lattice& lattice = prepared.lattice;
+  const LatticePose& best = search.result.best;
   Estimate e;
   place_winner(e, search, map_.geometry, options_);
   e.score = best.score;
@@ -384,9 +382,9 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
   e.on_window_edge = on_window_edge(best, lattice, window, map_.geometry, options_.resolution);
   // The winning heading's local grid: the most any pose could score.
   const double mass =
-      levels.front().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();
+      search.finest().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();
   e.normalized_score = mass > 0.0 ? e.score / mass : 0.0;
-  const Peaks found = this_many_hypotheses(search, peak_options, start);
+  const Peaks found = this_many_hypotheses(search, prepared.options, prepared.start);
   const std::vector<LatticePose>& peaks = found.poses;
   e.second_score = peaks.size() > 1 ? peaks[1].score : found.floor.value_or(e.score);
   e.second_below_floor = peaks.size() == 1 && found.floor.has_value();
@@ -404,7 +402,7 @@ Estimate CorrelationEstimator::estimate(const Observation& observation, const Se
     share_quantization(e.covariance, observation, lattice, options_);
   }
   judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
-  fill_stats(e, search.result, level_count, start);
+  fill_stats(e, search.result, prepared.level_count, prepared.start);
   return e;
 }
 

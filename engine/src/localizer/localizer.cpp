@@ -337,9 +337,15 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
                            ? slice_count(searcher.lattice(observation, global), options_.research)
                            : 1;  // the first observation's search answers at once
     const int seeds = options_.hypothesis_set.max_hypotheses + 1;
-    const int peaks =
-        slices == 1 ? (coarse_ ? 2 * seeds : seeds) : options_.research.peaks_per_slice;
-    next.search.emplace(observation, taken_at, global, slices, peaks);
+    const int whole = coarse_ ? 2 * seeds : seeds;  // the peaks of a search run whole
+    const double cells = options_.research.cells_per_update;
+    if (slices > 1 && cells > 0.0) {  // one search, a budget of it per update
+      next.search.emplace(observation, taken_at,
+                          PendingEstimate(searcher, observation, global, whole), cells);
+    } else {
+      const int peaks = slices == 1 ? whole : options_.research.peaks_per_slice;
+      next.search.emplace(observation, taken_at, global, slices, peaks);
+    }
     next.since_global_m = 0.0;
   }
   if (!next.search) return std::nullopt;
@@ -348,7 +354,12 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
   next.search->run(searcher, first ? next.search->slices() : options_.research.slices_per_update);
   next.status.search_slices_done = next.search->slices_done();
   next.status.search_slices = next.search->slices();
-  if (!next.search->done()) return std::nullopt;
+  next.status.search_progress = next.search->progress();
+  if (!next.search->done()) {
+    next.search->record({taken_at, next.since_global_m, observation},
+                        options_.research.catch_up_steps);
+    return std::nullopt;
+  }
   Estimate global = next.search->result(searcher.options());
   const bool coarse = &searcher != &estimator_;
   if (coarse) {  // coarse places: their windows span a few coarse cells; the fine windows and
@@ -358,7 +369,7 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
     global.covariance = Eigen::Vector3d(cell * cell, cell * cell, 4.0 * step * step).asDiagonal();
   }
   if (coarse || global.verdict != Verdict::NotLocalized) {
-    join(global, *next.search, tracked, taken_at, observation, !first);
+    join(global, *next.search, tracked, {taken_at, next.since_global_m, observation}, !first);
   }
   next.search.reset();
   next.status.search_finished = true;
@@ -367,9 +378,8 @@ std::optional<Estimate> Localizer::advance_search(LocalizerState& next,
 }
 
 void Localizer::join(const Estimate& global, const SlicedSearch& search,
-                     std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
-                     const Observation& observation, bool newcomers) const {
-  const Pose2 moved = relative_pose(search.odometry(), taken_at);
+                     std::vector<TrackedHypothesis>& tracked,
+                     const SlicedSearch::PastObservation& now, bool newcomers) const {
   const std::vector<TrackedHypothesis> before = tracked;  // the entry weights refer to these
   // After a confirmed track was lost, its successor must first be carried a while; a prior
   // no window confirmed was never a track.
@@ -383,8 +393,7 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
   HypothesisSetOptions seeding = options_.hypothesis_set;
   if (!newcomers && laser_) seeding.drop_ratio = options_.first_drop_ratio;  // a first scan
   for (TrackedHypothesis seed : seed_hypotheses(global, seeding).hypotheses) {
-    std::optional<TrackedHypothesis> followed =
-        follow_one(std::move(seed), moved, std::hypot(moved.x, moved.y), observation, nullptr);
+    std::optional<TrackedHypothesis> followed = catch_up(std::move(seed), search, now);
     if (!followed || meets(*followed)) continue;
     followed->log_weight =
         entry_log_weight(before, followed->estimate.normalized_score, options_.weights);
@@ -392,6 +401,30 @@ void Localizer::join(const Estimate& global, const SlicedSearch& search,
     followed->driven_m = 0.0;
     tracked.push_back(std::move(*followed));
   }
+}
+
+std::optional<TrackedHypothesis> Localizer::catch_up(
+    TrackedHypothesis seed, const SlicedSearch& search,
+    const SlicedSearch::PastObservation& now) const {
+  const std::vector<SlicedSearch::PastObservation>& path = search.path();
+  const std::size_t steps =
+      std::min(path.size(), static_cast<std::size_t>(options_.research.catch_up_steps));
+  Pose2 from = search.odometry();
+  double from_m = 0.0;
+  for (std::size_t k = 1; k <= steps + 1; ++k) {
+    // Evenly spread along the path taken meanwhile, then the latest observation.
+    const SlicedSearch::PastObservation& past =
+        k <= steps ? path[k * path.size() / steps - 1] : now;
+    const Pose2 moved = relative_pose(from, past.odometry);
+    const double driven = steps > 0 ? past.driven_m - from_m : std::hypot(moved.x, moved.y);
+    std::optional<TrackedHypothesis> followed =
+        follow_one(std::move(seed), moved, driven, past.observation, nullptr);
+    if (!followed) return std::nullopt;
+    seed = std::move(*followed);
+    from = past.odometry;
+    from_m = past.driven_m;
+  }
+  return seed;
 }
 
 std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, const Pose2& taken_at,

@@ -20,6 +20,14 @@ void validate(const SlicedSearchOptions& options) {
     throw Error("sliced search: slices_per_update must be at least 1, got " +
                 std::to_string(options.slices_per_update));
   }
+  if (!(options.cells_per_update >= 0.0) || !std::isfinite(options.cells_per_update)) {
+    throw Error("sliced search: cells_per_update must be finite and >= 0, got " +
+                std::to_string(options.cells_per_update));
+  }
+  if (options.catch_up_steps < 0 || options.catch_up_steps > 1000) {
+    throw Error("sliced search: catch_up_steps must lie in [0, 1000], got " +
+                std::to_string(options.catch_up_steps));
+  }
   if (!(options.resolution >= 0.0) || !std::isfinite(options.resolution)) {
     throw Error("sliced search: resolution must be finite and >= 0, got " +
                 std::to_string(options.resolution));
@@ -46,6 +54,29 @@ SlicedSearch::SlicedSearch(Observation observation, const Pose2& odometry,
       slices_(std::max(1, slices)),
       peaks_per_slice_(std::max(1, peaks_per_slice)) {}
 
+SlicedSearch::SlicedSearch(Observation observation, const Pose2& odometry, PendingEstimate pending,
+                           double cells_per_update)
+    : observation_(std::move(observation)),
+      odometry_(odometry),
+      pending_(std::move(pending)),
+      cells_per_update_(cells_per_update) {}
+
+double SlicedSearch::progress() const {
+  if (pending_) return 1.0 - pending_->open_share();
+  return double(next_) / double(slices_);
+}
+
+void SlicedSearch::record(PastObservation past, int keep) {
+  if (keep <= 0) return;
+  path_.push_back(std::move(past));
+  if (path_.size() <= 2 * static_cast<std::size_t>(keep)) return;
+  std::vector<PastObservation> thinned;
+  for (std::size_t k = path_.size() % 2 == 0 ? 1 : 0; k < path_.size(); k += 2) {
+    thinned.push_back(std::move(path_[k]));  // every other one, ending with the latest
+  }
+  path_ = std::move(thinned);
+}
+
 SearchWindow SlicedSearch::slice_window(int k) const {
   const double width = 2.0 * std::numbers::pi / slices_;
   SearchWindow window = global_;
@@ -57,6 +88,14 @@ SearchWindow SlicedSearch::slice_window(int k) const {
 }
 
 void SlicedSearch::run(const CorrelationEstimator& estimator, int count) {
+  if (pending_) {
+    if (pending_->done()) return;
+    const double cells = std::max(1.0, cells_per_update_ * std::max(1, count));
+    pending_->advance(static_cast<long long>(std::min(cells, 9e18)));
+    ++next_;
+    if (pending_->done()) slices_ = next_;
+    return;
+  }
   for (int k = 0; k < count && !done(); ++k, ++next_) {
     found_.push_back(estimator.estimate(observation_, slice_window(next_), peaks_per_slice_));
   }
@@ -72,6 +111,7 @@ bool distinct(const Pose2& a, const Pose2& b, const CorrelationOptions& options)
 }  // namespace
 
 Estimate SlicedSearch::result(const CorrelationOptions& options) const {
+  if (pending_) return pending_->result();
   if (found_.empty()) throw Error("sliced search: no slice has run");
   const auto best = std::max_element(
       found_.begin(), found_.end(), [](const auto& a, const auto& b) { return a.score < b.score; });

@@ -251,6 +251,36 @@ SearchResult search_branch_and_bound(const Lattice& lattice, const HeadingGrids&
                                      const BoundPyramid& pyramid,
                                      const BranchAndBoundOptions& options = {});
 
+/// search_branch_and_bound run a budget at a time (issue 34: a tracker's re-search spread
+/// over its updates, so that none stalls): on one thread (options.threads and budget_ms are
+/// ignored), each advance() reads about `cells` local cells or points (bounds and scores,
+/// SearchResult::cells_scored's unit) and keeps every open node for the next. Its result is
+/// search_branch_and_bound's: the same best pose and score, and with keep_share below 1
+/// every pose scoring that share of the best among `scored` (the order of the work differs,
+/// never the answer). `lattice`, `grids` and `pyramid` must outlive it.
+class ResumableBranchAndBound {
+ public:
+  /// Checks as search_branch_and_bound does and makes the top nodes (gridloc::Error).
+  ResumableBranchAndBound(const Lattice& lattice, const HeadingGrids& grids,
+                          const BoundPyramid& pyramid, BranchAndBoundOptions options);
+  ~ResumableBranchAndBound();
+  ResumableBranchAndBound(const ResumableBranchAndBound&) = delete;
+  ResumableBranchAndBound& operator=(const ResumableBranchAndBound&) = delete;
+
+  /// Runs until about `cells` more cells are read or the search is over; true once over.
+  bool advance(long long cells);
+  bool done() const;
+  /// The share of the lattice's poses still in open nodes that could hold the best (1 at the
+  /// start, 0 when done): the search's progress.
+  double open_share() const;
+  /// The result once done() (moved out: call once); gridloc::Error before.
+  SearchResult take_result();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// The same search, making its own HeadingGrids (with `exclude` only).
 SearchResult search_branch_and_bound(const Lattice& lattice, const SearchLevel& finest,
                                      const BoundPyramid& pyramid,

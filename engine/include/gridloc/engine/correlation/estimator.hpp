@@ -140,6 +140,11 @@ struct ScoreVolume {
   Pose2 pose(double x, double y, double t) const;
 };
 
+namespace correlation_detail {
+struct PreparedSearch;
+}
+class PendingEstimate;
+
 class CorrelationEstimator final : public Estimator {
  public:
   /// Precomputes the global grid of every level; throws gridloc::Error for bad options or ring,
@@ -186,6 +191,14 @@ class CorrelationEstimator final : public Estimator {
   const PaddedGrid& level(int l) const { return levels_.at(static_cast<std::size_t>(l)); }
 
  private:
+  friend class PendingEstimate;
+  /// estimate()'s steps before its search (`prepared` gets the lattice, levels and search,
+  /// after the checks) and after it (the winner placed, the hypotheses, the covariance and
+  /// the verdict, from the search's result).
+  void prepare(correlation_detail::PreparedSearch& prepared, const Observation& observation,
+               const SearchWindow& window, int hypotheses) const;
+  Estimate conclude(correlation_detail::PreparedSearch& prepared, const Observation& observation,
+                    const SearchWindow& window) const;
   /// The observation's local grid for heading theta (grid frame) at `resolution`; `points`
   /// are the scan's points under a point model (nullptr otherwise).
   SparseLocalGrid local_grid(const Observation& observation, const ScanPoints* points, double theta,

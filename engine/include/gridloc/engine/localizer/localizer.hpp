@@ -213,8 +213,10 @@ void validate(const LaserSensor& laser);
 
 /// What the latest observation did besides its estimate (for logs, plots and progress).
 struct LocalizerStatus {
-  int search_slices_done = 0;    ///< a re-search under way: slices done...
-  int search_slices = 0;         ///< ...of these (0 and 0: none under way)
+  int search_slices_done = 0;  ///< a re-search under way: slices done...
+  int search_slices = 0;       ///< ...of these (0 and 0: none under way)
+  /// The share of it done (of its slices, or of its lattice's poses ruled out; 1 when done).
+  double search_progress = 0.0;
   bool search_finished = false;  ///< a search finished at this observation; its places joined
   bool jump_rejected = false;    ///< the answer was `localized` but the jump gate refused it
   /// The answer was `localized` but is the first place from no prior, not yet borne out by
@@ -312,12 +314,17 @@ class Localizer {
                                          std::vector<TrackedHypothesis>& tracked,
                                          const Pose2& taken_at,
                                          const Observation& observation) const;
-  /// A finished search's places, carried from its observation to `taken_at` and re-scored
-  /// on `observation`, join `tracked` with their entry weights (unless they meet a place
-  /// already tracked); a re-search's are `newcomers` (TrackedHypothesis::newcomer).
+  /// A finished search's places, carried from its observation to `now` (catch_up) and
+  /// re-scored on its observation, join `tracked` with their entry weights (unless they meet
+  /// a place already tracked); a re-search's are `newcomers` (TrackedHypothesis::newcomer).
   void join(const Estimate& global, const SlicedSearch& search,
-            std::vector<TrackedHypothesis>& tracked, const Pose2& taken_at,
-            const Observation& observation, bool newcomers) const;
+            std::vector<TrackedHypothesis>& tracked, const SlicedSearch::PastObservation& now,
+            bool newcomers) const;
+  /// A search's place carried from the search's observation through up to
+  /// SlicedSearchOptions::catch_up_steps of the observations taken meanwhile (evenly spread),
+  /// then to `now`, matched in its window at each; nullopt when it leaves the map.
+  std::optional<TrackedHypothesis> catch_up(TrackedHypothesis seed, const SlicedSearch& search,
+                                            const SlicedSearch::PastObservation& now) const;
   /// Whether the window `e` around a carried place explains the observation there, and
   /// where it puts the place: updates the place and sets e.verdict to the place's own.
   /// A winner that LocalizerOptions::split_far_winners makes a place of its own is added to

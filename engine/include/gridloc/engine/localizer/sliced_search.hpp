@@ -4,9 +4,11 @@
 /// few slices (every translation of the map, a slice of the headings, an exact search each),
 /// and when the last is done the slices' distinct peaks, merged, are the search's answer,
 /// taken at the odometry pose of the observation it searched.
+#include <optional>
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/correlation/pending_estimate.hpp"
 
 namespace gridloc {
 
@@ -15,6 +17,12 @@ struct SlicedSearchOptions {
   /// (translations x headings) each; 0: the whole search in one update (a stall). A small
   /// map's search (a sonar ring's room) is one slice, so it answers at once.
   double poses_per_slice = 1.2e6;
+  /// A re-search that needs more than one slice instead runs as one branch-and-bound search
+  /// of the whole map advanced by about this many local cells or points an update (bounds
+  /// and scores, Estimate::stats.cells_scored's unit), its open nodes kept between updates
+  /// (PendingEstimate): it costs what one search costs, where the heading slices each
+  /// search without the others' best score to prune with. 0: the heading slices.
+  double cells_per_update = 4e6;
   int slices_per_update = 1;  ///< slices run per update while a re-search is under way
   /// The distinct peaks each slice reports (each beyond the first costs a search).
   int peaks_per_slice = 2;
@@ -22,6 +30,12 @@ struct SlicedSearchOptions {
   /// once beside the tracker's; their places are then refined at the tracker's own cell by a
   /// window each. 0 (or the tracker's cell or finer): the tracker's own grids, exact.
   double resolution = 0.2;
+  /// A re-search that finishes after the robot drove on carries its places to the latest
+  /// observation through up to this many of the observations taken meanwhile, spread along
+  /// the path, each matched in the place's window as a tracked place is (the odometry alone
+  /// carried them the whole way, and a long way is more than their windows span). 0: the
+  /// odometry alone.
+  int catch_up_steps = 6;
   /// The first observation's search too (else only re-searches) runs on the coarse copy.
   bool coarse_first_search = true;
   /// A re-search under way is dropped once the tracker's answer is `localized` again on a
@@ -39,18 +53,38 @@ void validate(const SlicedSearchOptions& options);
 int slice_count(const Lattice& lattice, const SlicedSearchOptions& options);
 
 /// One re-search: the observation it searches, the odometry pose it was taken at, and the
-/// slices done so far. A plain value (copied with the tracker's state).
+/// slices done so far. A plain value (copied with the tracker's state; the copies of one
+/// run a budget at a time share its search).
 class SlicedSearch {
  public:
   /// `global` is the estimator's global window for `observation`; `slices` >= 1.
   SlicedSearch(Observation observation, const Pose2& odometry, const SearchWindow& global,
                int slices, int peaks_per_slice);
+  /// An observation taken while the search ran, with the odometry pose it was taken at and
+  /// the path driven since the search's own (m): its places are carried through some of
+  /// them when it finishes (SlicedSearchOptions::catch_up_steps).
+  struct PastObservation {
+    Pose2 odometry;
+    double driven_m = 0.0;
+    Observation observation;
+  };
+
+  /// The search `pending`, advanced by about `cells_per_update` cells an update (run()'s
+  /// `count` times that); its slices are the updates it ran (one more while under way).
+  SlicedSearch(Observation observation, const Pose2& odometry, PendingEstimate pending,
+               double cells_per_update);
 
   /// Runs the next `count` slices (fewer when fewer are left).
   void run(const CorrelationEstimator& estimator, int count);
-  bool done() const { return next_ == slices_; }
+  bool done() const { return pending_ ? pending_->done() : next_ == slices_; }
   int slices_done() const { return next_; }
-  int slices() const { return slices_; }
+  int slices() const { return pending_ && !done() ? next_ + 1 : slices_; }
+  /// The share of the search done: of its slices, or of its lattice's poses ruled out.
+  double progress() const;
+  /// Keeps an observation taken while the search runs; beyond 2 `keep` of them every other
+  /// one is dropped (the latest stays), so they stay spread along the path.
+  void record(PastObservation past, int keep);
+  const std::vector<PastObservation>& path() const { return path_; }
   const Observation& observation() const { return observation_; }
   const Pose2& odometry() const { return odometry_; }
 
@@ -69,7 +103,10 @@ class SlicedSearch {
   int slices_ = 1;
   int peaks_per_slice_ = 1;
   int next_ = 0;
-  std::vector<Estimate> found_;  ///< one per slice run
+  std::vector<Estimate> found_;             ///< one per slice run
+  std::optional<PendingEstimate> pending_;  ///< the search run a budget at a time, if so
+  std::vector<PastObservation> path_;       ///< observations taken meanwhile, thinned
+  double cells_per_update_ = 0.0;
 };
 
 }  // namespace gridloc
