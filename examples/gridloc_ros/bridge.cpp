@@ -133,6 +133,7 @@ struct Bridge::Impl {
     a.elapsed_ms = elapsed_ms;
     a.search_slices_done = status.search_slices_done;
     a.search_slices = status.search_slices;
+    a.search_progress = status.search_progress;
     a.held_back = gridloc::to_string(status.held_back);
     return a;
   }

@@ -57,7 +57,8 @@ struct Answer {
   double confidence = 0.0;
   int hypotheses = 0;
   double elapsed_ms = 0.0;
-  int search_slices_done = 0, search_slices = 0;  ///< a re-search under way
+  int search_slices_done = 0, search_slices = 0;  ///< a re-search under way...
+  double search_progress = 0.0;                   ///< ...and the share of it done
   /// Why the answer is "not localized" ("none" otherwise): gridloc::HeldBack's name.
   std::string held_back = "none";
 };

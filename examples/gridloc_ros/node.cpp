@@ -369,6 +369,7 @@ class Node {
     value("update_ms", a.elapsed_ms);
     value("search_slices_done", a.search_slices_done);
     value("search_slices", a.search_slices);
+    value("search_progress", a.search_progress);
     diagnostic_msgs::KeyValue held_back;
     held_back.key = "held_back";
     held_back.value = a.held_back;
