@@ -1,9 +1,11 @@
 #pragma once
-/// A global search cut into heading slices (issue 34: no stall). A tracker that lost its
-/// place re-searches the whole map without stopping its updates: each update runs the next
-/// few slices (every translation of the map, a slice of the headings, an exact search each),
-/// and when the last is done the slices' distinct peaks, merged, are the search's answer,
-/// taken at the odometry pose of the observation it searched.
+/// A global search spread over a tracker's updates (issue 34: no stall). A tracker that
+/// lost its place re-searches the whole map without stopping its updates: each update
+/// advances one exact search by a budget (a PendingEstimate), or runs the next few heading
+/// slices (every translation of the map, a slice of the headings, an exact search each, their
+/// distinct peaks merged at the end); the answer is taken at the odometry pose of the
+/// observation it searched, and the observations taken meanwhile are kept to carry its
+/// places up to the latest one.
 #include <optional>
 #include <vector>
 
