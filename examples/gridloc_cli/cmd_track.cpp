@@ -46,6 +46,7 @@ struct TrackArgs {
   double max_window_turn_deg = LocalizerOptions{}.max_half_theta * 180.0 / std::numbers::pi;
   double poses_per_slice = SlicedSearchOptions{}.poses_per_slice;
   double cells_per_update = SlicedSearchOptions{}.cells_per_update;
+  int catch_up_steps = SlicedSearchOptions{}.catch_up_steps;
   double search_resolution = SlicedSearchOptions{}.resolution;
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
   bool keep_re_searches = false, unfused_positions = false;
@@ -184,6 +185,7 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.max_half_theta = args.max_window_turn_deg * std::numbers::pi / 180.0;
   options.localizer.research.poses_per_slice = args.poses_per_slice;
   options.localizer.research.cells_per_update = args.cells_per_update;
+  options.localizer.research.catch_up_steps = args.catch_up_steps;
   options.localizer.research.resolution = args.search_resolution;
   options.localizer.research.drop_once_localized = !args.keep_re_searches;
   options.localizer.fuse_carried_position = !args.unfused_positions;
@@ -404,6 +406,11 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
                   "a re-search of more than one slice runs as one search advanced by about this "
                   "many cells or points read per update (0: one heading slice per update)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--catch-up-steps", args.catch_up_steps,
+                  "a finished re-search's places are carried to the latest scan through up to "
+                  "this many of the scans taken meanwhile (0: by the odometry alone)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_flag("--keep-re-searches", args.keep_re_searches,
                 "run a re-search to its end even once the track is localized again on one place "
