@@ -66,6 +66,7 @@ class BranchAndBoundSearch {
     }
   }
 
+  /// The whole search on options.threads threads (search_branch_and_bound).
   SearchResult run();
 
   /// A search run a budget at a time, on one thread: its top nodes (or, with no bound
