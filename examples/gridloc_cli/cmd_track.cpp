@@ -170,6 +170,11 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
                args.resolution, "must be a finite cell size >= 0 (0: the map's cell)");
   require_flag(args.weak_fit_ratio >= 0.0 && args.weak_fit_ratio <= 1.0, "--weak-fit-ratio",
                args.weak_fit_ratio, "must lie in [0, 1]");
+  require_flag(args.cells_per_update >= 0.0 && std::isfinite(args.cells_per_update),
+               "--cells-per-update", args.cells_per_update,
+               "must be a finite number >= 0 (0: heading slices)");
+  require_flag(args.catch_up_steps >= 0 && args.catch_up_steps <= 1000, "--catch-up-steps",
+               args.catch_up_steps, "must lie in [0, 1000]");
   LogTrackingOptions options;
   options.localizer.correlation.limits = limits();
   options.localizer.correlation.resolution =
@@ -405,12 +410,10 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
   cmd->add_option("--cells-per-update", args.cells_per_update,
                   "a re-search of more than one slice runs as one search advanced by about this "
                   "many cells or points read per update (0: one heading slice per update)")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--catch-up-steps", args.catch_up_steps,
                   "a finished re-search's places are carried to the latest scan through up to "
                   "this many of the scans taken meanwhile (0: by the odometry alone)")
-      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_flag("--keep-re-searches", args.keep_re_searches,
                 "run a re-search to its end even once the track is localized again on one place "

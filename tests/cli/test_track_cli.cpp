@@ -302,6 +302,9 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
   expect_cli_error(run_cli(dir, base + "--global --max-window-turn -5"),
                    {"--max-window-turn", "-5"});
   expect_cli_error(run_cli(dir, base + "--global --weak-fit-ratio 2"), {"--weak-fit-ratio", "2"});
+  expect_cli_error(run_cli(dir, base + "--global --cells-per-update nan"),
+                   {"--cells-per-update", "nan"});
+  expect_cli_error(run_cli(dir, base + "--global --catch-up-steps -1"), {"--catch-up-steps", "-1"});
   expect_cli_error(run_cli(dir, base + "--global --global-grid fog"), {"--global-grid", "fog"});
   expect_cli_error(run_cli(dir, base + "--global --global-grid field --field-sigma -1"),
                    {"--field-sigma"});
