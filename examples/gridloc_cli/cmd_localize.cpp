@@ -12,7 +12,6 @@
 #include "commands.hpp"
 #include "gridloc/engine/correlation/coarse_to_fine.hpp"
 #include "gridloc/engine/correlation/estimator.hpp"
-#include "gridloc/engine/evaluation/sector_protocol.hpp"
 #include "gridloc/engine/icp/estimator.hpp"
 #include "gridloc/engine/sectors/estimator.hpp"
 #include "gridloc/engine/sectors/sector_file.hpp"
@@ -107,9 +106,9 @@ std::unique_ptr<Estimator> make_sector_estimator(
   }
   auto sectors = std::make_shared<const SectorEstimator>(std::move(computed), options);
   // The local search on its own 2.5 cm lattice: the sector fix is already within
-  // centimetres (SectorEvalOptions::refinement_resolution).
+  // centimetres (SectorCorrelationOptions::resolution).
   CorrelationOptions fine = correlation->options();
-  fine.resolution = SectorEvalOptions{}.refinement_resolution;
+  fine.resolution = SectorCorrelationOptions{}.resolution;
   auto local = std::make_shared<const CorrelationEstimator>(
       rasterize_polygon_map(polygons, fine.resolution), fine);
   return std::make_unique<SectorCorrelationEstimator>(sectors, local);
