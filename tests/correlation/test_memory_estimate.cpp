@@ -150,7 +150,7 @@ TEST(MemoryEstimate, ASearchOverTheLimitIsRefusedBeforeItRuns) {
   test::expect_error([&] { estimator.estimate(observation, window); }, {"step_theta", "headings"});
   window.step_theta = 1e300;  // and a step is at most a turn
   test::expect_error([&] { estimator.estimate(observation, window); },
-                     {"step_theta = 1e+300 must lie in (0, 2 pi]"});
+                     {"step_theta must lie in (0, 2 pi], got 1e+300"});
 }
 
 // Issue 14, case 4: the Localizer's estimator goes through the same estimate.

@@ -426,18 +426,18 @@ TEST(ScanFeatures, RefusesBadOptionsAndScans) {
     change(o);
     return [scan, o] { extract_features(scan, o); };
   };
-  test::expect_error(with([](FeatureOptions& o) { o.split_m = 0.0; }), {"FeatureOptions.split_m"});
+  test::expect_error(with([](FeatureOptions& o) { o.split_m = 0.0; }), {"FeatureOptions: split_m"});
   test::expect_error(
       with([](FeatureOptions& o) { o.gap_m = std::numeric_limits<double>::quiet_NaN(); }),
-      {"FeatureOptions.gap_m"});
+      {"FeatureOptions: gap_m"});
   test::expect_error(with([](FeatureOptions& o) { o.min_wall_points = 1; }),
-                     {"FeatureOptions.min_wall_points"});
+                     {"FeatureOptions: min_wall_points"});
   test::expect_error(with([](FeatureOptions& o) { o.min_wall_m = -1.0; }),
-                     {"FeatureOptions.min_wall_m"});
+                     {"FeatureOptions: min_wall_m"});
   test::expect_error(with([](FeatureOptions& o) { o.min_turn = 4.0; }),
-                     {"FeatureOptions.min_turn"});
+                     {"FeatureOptions: min_turn"});
   test::expect_error(with([](FeatureOptions& o) { o.saturation_margin_m = -0.1; }),
-                     {"FeatureOptions.saturation_margin_m"});
+                     {"FeatureOptions: saturation_margin_m"});
   RangeScan bad = scan;
   bad.ranges[7] = std::numeric_limits<double>::quiet_NaN();
   test::expect_error([&] { extract_features(bad); }, {"beam 7", "NaN"});

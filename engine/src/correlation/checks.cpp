@@ -177,10 +177,8 @@ void check_observation(const Observation& observation, const SonarRing& ring, do
 using namespace correlation_detail;
 
 void validate(const SearchWindow& w) {
-  auto bad = [](const std::string& field, double v, const std::string& rule) {
-    std::ostringstream m;
-    m << "search window: " << field << " = " << v << " " << rule;
-    throw Error(m.str());
+  auto bad = [](const char* field, double v, const char* rule) {
+    require_option(false, "search window", field, v, rule);
   };
   if (!std::isfinite(w.center.x) || !std::isfinite(w.center.y) || !std::isfinite(w.center.theta)) {
     throw Error("search window: the prior pose must be finite");

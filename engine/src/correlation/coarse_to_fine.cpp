@@ -6,23 +6,20 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <utility>
 #include <vector>
 
 #include "confidence.hpp"
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/sensors/through_walls.hpp"
 
 namespace gridloc {
 namespace {
 
-/// Throws naming `field` and its value unless `ok`.
+/// Throws naming `field` and its value unless `ok` (option_checks.hpp's one form).
 void require(bool ok, const char* field, double value, const char* rule) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "coarse-to-fine search: " << field << " = " << value << " " << rule;
-  throw Error(message.str());
+  require_option(ok, "coarse-to-fine search", field, value, rule);
 }
 
 const std::shared_ptr<const CorrelationEstimator>& checked(

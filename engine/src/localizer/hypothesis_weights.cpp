@@ -8,15 +8,13 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 
 namespace gridloc {
 namespace {
 
 void require(bool ok, const char* field, double value, const char* rule) {
-  if (!ok) {
-    throw Error(std::string("hypothesis weights: ") + field + " = " + std::to_string(value) + " " +
-                rule);
-  }
+  require_option(ok, "hypothesis weights", field, value, rule);
 }
 
 double max_log_weight(const std::vector<TrackedHypothesis>& hypotheses) {

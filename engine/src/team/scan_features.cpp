@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/grids/planar.hpp"
 #include "scan_runs.hpp"
 
@@ -25,10 +26,7 @@ using team_detail::ScanRun;
 using team_detail::WallPiece;
 
 void check_option(bool ok, const char* field, const char* rule, double value) {
-  if (!ok) {
-    throw Error(std::string("FeatureOptions.") + field + " must be " + rule + ", got " +
-                std::to_string(value));
-  }
+  require_option(ok, "FeatureOptions", field, value, std::string("must be ") + rule);
 }
 
 /// validate(scan) less its "no return" rule: a scan that saw nothing has no feature, which is
