@@ -4,20 +4,16 @@
 #include <cmath>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "wall_geometry.hpp"
 
 namespace gridloc {
 
 void validate(const LinkGateOptions& options) {
-  auto require = [](bool ok, const char* message) {
-    if (!ok) throw Error(message);
-  };
-  require(std::isfinite(options.placement_sigma_m) && options.placement_sigma_m >= 0.0,
-          "placement_sigma_m must be >= 0 and finite");
-  require(std::isfinite(options.heading_sigma) && options.heading_sigma >= 0.0,
-          "heading_sigma must be >= 0 and finite");
-  require(std::isfinite(options.gate_sigmas) && options.gate_sigmas > 0.0,
-          "gate_sigmas must be positive and finite");
+  constexpr const char* kOwner = "link gate options";
+  require_non_negative(options.placement_sigma_m, kOwner, "placement_sigma_m");
+  require_non_negative(options.heading_sigma, kOwner, "heading_sigma");
+  require_positive(options.gate_sigmas, kOwner, "gate_sigmas");
 }
 
 double position_gate(const VirtualLink& link, const CameraModel& camera,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "wall_geometry.hpp"
 
 namespace gridloc {
@@ -16,20 +17,13 @@ Eigen::Vector2d PoseCandidate::position(double t) const {
 }
 
 void validate(const CandidateOptions& options) {
-  auto require = [](bool ok, const char* message) {
-    if (!ok) throw Error(message);
-  };
-  require(std::isfinite(options.angle_tolerance) && options.angle_tolerance > 0.0,
-          "candidate angle_tolerance must be positive and finite");
-  require(options.features >= 1, "candidate features must be >= 1");
-  require(std::isfinite(options.merge_m) && options.merge_m >= 0.0,
-          "candidate merge_m must be >= 0 and finite");
-  require(std::isfinite(options.merge_theta) && options.merge_theta >= 0.0,
-          "candidate merge_theta must be >= 0 and finite");
-  require(options.min_agreement >= 0.0 && options.min_agreement <= 1.0,
-          "candidate min_agreement must be in [0, 1]");
-  require(std::isfinite(options.agreement_tolerance_m) && options.agreement_tolerance_m > 0.0,
-          "candidate agreement_tolerance_m must be positive and finite");
+  constexpr const char* kOwner = "candidate options";
+  require_positive(options.angle_tolerance, kOwner, "angle_tolerance");
+  require_option(options.features >= 1, kOwner, "features", options.features, "must be >= 1");
+  require_non_negative(options.merge_m, kOwner, "merge_m");
+  require_non_negative(options.merge_theta, kOwner, "merge_theta");
+  require_share(options.min_agreement, kOwner, "min_agreement");
+  require_positive(options.agreement_tolerance_m, kOwner, "agreement_tolerance_m");
 }
 
 namespace {

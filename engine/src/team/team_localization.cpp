@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gridloc/grids/error.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "team_checks.hpp"
 #include "wall_geometry.hpp"
 
@@ -12,20 +13,15 @@ namespace gridloc {
 void validate(const TeamOptions& options) {
   validate(options.camera);
   validate(options.gate);
-  auto require = [](bool ok, const char* message) {
-    if (!ok) throw Error(message);
-  };
-  require(std::isfinite(options.merge_m) && options.merge_m > 0.0,
-          "team merge_m must be positive and finite");
-  require(std::isfinite(options.merge_theta) && options.merge_theta > 0.0,
-          "team merge_theta must be positive and finite");
-  require(options.rival_ratio > 0.0 && options.rival_ratio <= 1.0,
-          "team rival_ratio must be in (0, 1]");
-  require(options.min_agreement >= 0.0 && options.min_agreement <= 1.0,
-          "team min_agreement must be in [0, 1]");
-  require(std::isfinite(options.agreement_tolerance_m) && options.agreement_tolerance_m > 0.0,
-          "team agreement_tolerance_m must be positive and finite");
-  require(options.max_partial >= 1, "team max_partial must be >= 1");
+  constexpr const char* kOwner = "team options";
+  require_positive(options.merge_m, kOwner, "merge_m");
+  require_positive(options.merge_theta, kOwner, "merge_theta");
+  require_option(options.rival_ratio > 0.0 && options.rival_ratio <= 1.0, kOwner, "rival_ratio",
+                 options.rival_ratio, "must lie in (0, 1]");
+  require_share(options.min_agreement, kOwner, "min_agreement");
+  require_positive(options.agreement_tolerance_m, kOwner, "agreement_tolerance_m");
+  require_option(options.max_partial >= 1, kOwner, "max_partial",
+                 static_cast<double>(options.max_partial), "must be >= 1");
 }
 
 namespace {
