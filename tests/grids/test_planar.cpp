@@ -16,6 +16,15 @@
 namespace gridloc {
 namespace {
 
+TEST(Planar, ASegmentIsItsTwoEndsZeroUnlessGiven) {
+  const Segment2 unset;
+  EXPECT_EQ(unset.a, Eigen::Vector2d::Zero());
+  EXPECT_EQ(unset.b, Eigen::Vector2d::Zero());
+  const Segment2 wall{{1.0, 2.0}, {3.0, 4.0}};
+  EXPECT_EQ(wall.a, Eigen::Vector2d(1.0, 2.0));
+  EXPECT_EQ(wall.b, Eigen::Vector2d(3.0, 4.0));
+}
+
 TEST(Planar, CrossIsTheZOfTheThreeDimensionalCrossProduct) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> value(-100.0, 100.0);

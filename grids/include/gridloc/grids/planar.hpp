@@ -8,6 +8,12 @@
 
 namespace gridloc {
 
+/// A segment from a to b: a wall, a polygon's edge.
+struct Segment2 {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+};
+
 /// The 2-D cross product a.x b.y - a.y b.x: > 0 when b lies counter-clockwise of a, the
 /// signed area of the parallelogram they span.
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

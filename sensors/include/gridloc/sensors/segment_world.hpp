@@ -5,14 +5,13 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 
 namespace gridloc {
 
 /// A wall from a to b, world frame (m).
-struct WallSegment {
-  Eigen::Vector2d a, b;
-};
+using WallSegment = Segment2;
 
 /// A noise-free scan of `walls` from world pose `pose`: beam k at robot-frame angle
 /// first_angle + k * angle_step (rad) reads the distance to the nearest wall it crosses (ends

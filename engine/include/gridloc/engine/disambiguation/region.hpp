@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gridloc/grids/geometry.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 
 namespace gridloc {
@@ -23,10 +24,8 @@ struct Area {
 
 using Region = std::vector<Area>;  ///< disjoint areas
 
-struct PlanarSegment {
-  Eigen::Vector2d a = Eigen::Vector2d::Zero();
-  Eigen::Vector2d b = Eigen::Vector2d::Zero();
-};
+/// An edge of an area, from a to b.
+using PlanarSegment = Segment2;
 
 /// The free space of a polygon map: its boundary with its obstacles as holes.
 Area free_area(const PolygonMap& map);

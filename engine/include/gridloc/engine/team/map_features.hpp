@@ -7,15 +7,14 @@
 #include <vector>
 
 #include "gridloc/grids/grid.hpp"
+#include "gridloc/grids/planar.hpp"
 #include "gridloc/grids/polygon_map.hpp"
 
 namespace gridloc {
 
 /// A wall of the map, from a to b with the free space on its left (the orientation of
 /// polygon_edges(): a robot's scan, ordered counter-clockwise, runs along a wall the same way).
-struct MapWall {
-  Eigen::Vector2d a, b;
-};
+using MapWall = Segment2;
 
 /// A vertex of the map where two walls meet: `in` (index into MapFeatures::walls) arrives at
 /// `point`, `out` leaves it. Concave: the free space turns left there (a room's inside corner,
