@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace gridloc {
@@ -65,6 +66,41 @@ TEST(Planar, DistanceToSegmentIsTheNearestPointOfIt) {
   EXPECT_EQ(distance_to_segment({-3.0, 4.0}, a, b), 5.0);  // beyond an end
   EXPECT_EQ(distance_to_segment({7.0, 4.0}, a, b), 5.0);
   EXPECT_EQ(distance_to_segment({3.0, 4.0}, a, a), 5.0);  // a point
+}
+
+// The distance to the nearest of several segments against brute force: the nearest of many
+// points along all of them.
+TEST(Planar, DistanceToNearestIsThatOfTheNearestPointOfAnySegment) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> value(-10.0, 10.0);
+  for (int k = 0; k < 200; ++k) {
+    std::vector<Segment2> segments(1 + k % 5);
+    for (Segment2& s : segments) s = {{value(rng), value(rng)}, {value(rng), value(rng)}};
+    const Eigen::Vector2d p(value(rng), value(rng));
+    double sampled = std::numeric_limits<double>::infinity();
+    for (const Segment2& s : segments) {
+      for (int i = 0; i <= 20000; ++i) {
+        sampled = std::min(sampled, (s.a + (i / 20000.0) * (s.b - s.a) - p).norm());
+      }
+    }
+    const double d = distance_to_nearest(
+        p, segments.size(), [&](std::size_t i) -> const Segment2& { return segments[i]; });
+    EXPECT_LE(d, sampled + 1e-12) << k;
+    EXPECT_NEAR(d, sampled, 1e-3) << k;  // the sampled point is at most half a step off
+  }
+}
+
+TEST(Planar, DistanceToNearestTakesSegmentsByIndex) {
+  // A 4 x 3 room as vertices and edges by index pairs (as sectors keep them).
+  const std::vector<Eigen::Vector2d> corners = {{0.0, 0.0}, {4.0, 0.0}, {4.0, 3.0}, {0.0, 3.0}};
+  const std::vector<std::pair<int, int>> edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const auto edge = [&](std::size_t k) {
+    return Segment2{corners[edges[k].first], corners[edges[k].second]};
+  };
+  EXPECT_EQ(distance_to_nearest({1.0, 2.5}, edges.size(), edge), 0.5);  // the top wall
+  EXPECT_EQ(distance_to_nearest({3.0, 1.0}, edges.size(), edge), 1.0);  // right and bottom
+  EXPECT_EQ(distance_to_nearest({7.0, 7.0}, edges.size(), edge), 5.0);  // outside, a corner
+  EXPECT_EQ(distance_to_nearest({7.0, 7.0}, 0, edge), std::numeric_limits<double>::infinity());
 }
 
 TEST(Planar, TwoLinesMeetWhereEachPassesThrough) {

@@ -25,11 +25,10 @@ double median(std::vector<double> v) {
 }
 
 double distance_to_walls(const PolygonMap& map, const Eigen::Vector2d& p) {
-  double distance = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : polygon_edges(map)) {
-    distance = std::min(distance, distance_to_segment(p, a, b));
-  }
-  return distance;
+  const auto edges = polygon_edges(map);
+  return distance_to_nearest(p, edges.size(), [&](std::size_t k) {
+    return Segment2{edges[k].first, edges[k].second};
+  });
 }
 
 /// The lowest and the highest corner of the box around `polygon`.

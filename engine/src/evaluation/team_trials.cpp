@@ -41,11 +41,8 @@ bool in_free_cell(const OccupancyMap& grid, const Eigen::Vector2d& p) {
 }
 
 double wall_distance(const MapFeatures& map, const Eigen::Vector2d& p) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const MapWall& wall : map.walls) {
-    nearest = std::min(nearest, distance_to_segment(p, wall.a, wall.b));
-  }
-  return nearest;
+  return distance_to_nearest(p, map.walls.size(),
+                             [&](std::size_t k) -> const MapWall& { return map.walls[k]; });
 }
 
 /// A uniformly drawn free cell's point (the first robot).

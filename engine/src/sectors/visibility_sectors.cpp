@@ -376,11 +376,10 @@ void mark_turned_twins(std::vector<Sector>& sectors) {
 
 /// The distance from `p` to the nearest edge (m).
 double wall_distance(const Geometry& geometry, const Eigen::Vector2d& p) {
-  double wall = std::numeric_limits<double>::infinity();
-  for (const auto& [i, j] : geometry.edges) {
-    wall = std::min(wall, distance_to_segment(p, geometry.vertices[i], geometry.vertices[j]));
-  }
-  return wall;
+  return distance_to_nearest(p, geometry.edges.size(), [&](std::size_t k) {
+    const auto [i, j] = geometry.edges[k];
+    return Segment2{geometry.vertices[i], geometry.vertices[j]};
+  });
 }
 
 /// Seed 000 eq. (10)-(11): alpha = the smallest angle a fully visible edge subtends over a

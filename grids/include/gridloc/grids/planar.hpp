@@ -3,8 +3,10 @@
 /// callers keeping their own tolerances.
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace gridloc {
 
@@ -37,6 +39,19 @@ inline double squared_distance_to_segment(const Eigen::Vector2d& p, const Eigen:
 inline double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                                   const Eigen::Vector2d& b) {
   return std::sqrt(squared_distance_to_segment(p, a, b));
+}
+
+/// The distance from p to the nearest of segment_at(0), ..., segment_at(count - 1) (each
+/// with ends a and b, such as a Segment2), or +infinity when count = 0.
+template <class SegmentAt>
+double distance_to_nearest(const Eigen::Vector2d& p, std::size_t count,
+                           const SegmentAt& segment_at) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto& segment = segment_at(k);
+    nearest = std::min(nearest, distance_to_segment(p, segment.a, segment.b));
+  }
+  return nearest;
 }
 
 /// Where the line through p along u meets the line through q along v:
