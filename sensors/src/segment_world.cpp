@@ -8,6 +8,11 @@
 #include "gridloc/grids/error.hpp"
 
 namespace gridloc {
+namespace {
+
+constexpr RayTolerances kBeamTolerances{.parallel = 1e-12, .slack = 1e-12, .origin_counts = false};
+
+}  // namespace
 
 RangeScan simulate_segment_scan(const std::vector<WallSegment>& walls, const Pose2& pose, int beams,
                                 double first_angle, double angle_step, double max_range) {
@@ -38,18 +43,9 @@ RangeScan simulate_segment_scan(const std::vector<WallSegment>& walls, const Pos
   for (int k = 0; k < beams; ++k) {
     const double bearing = first_angle + angle_step * k;
     const Eigen::Vector2d d(std::cos(pose.theta + bearing), std::sin(pose.theta + bearing));
-    double best = std::numeric_limits<double>::infinity();
-    for (const WallSegment& w : walls) {
-      // o + t d = a + u (b - a), solved by Cramer's rule; t > 0 ahead, u in [0, 1] on the wall
-      // (with a hair of slack, so a beam through a vertex shared by two walls meets one).
-      const Eigen::Vector2d e = w.b - w.a;
-      const double den = d.x() * e.y() - d.y() * e.x();
-      if (std::abs(den) < 1e-12) continue;
-      const Eigen::Vector2d ao = w.a - o;
-      const double t = (ao.x() * e.y() - ao.y() * e.x()) / den;
-      const double u = (ao.x() * d.y() - ao.y() * d.x()) / den;
-      if (t > 0 && u >= -1e-12 && u <= 1 + 1e-12) best = std::min(best, t);
-    }
+    // t > 0 ahead, u in [0, 1] on the wall with a hair of slack (a beam through a vertex
+    // shared by two walls meets one).
+    const double best = ray_distance(o, d, walls, kBeamTolerances);
     scan.angles.push_back(bearing);
     scan.ranges.push_back(best < max_range ? best : max_range);
   }

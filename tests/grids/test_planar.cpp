@@ -103,6 +103,87 @@ TEST(Planar, DistanceToNearestTakesSegmentsByIndex) {
   EXPECT_EQ(distance_to_nearest({7.0, 7.0}, 0, edge), std::numeric_limits<double>::infinity());
 }
 
+// The ray distance against an independent solve: each segment's (t, u) from Eigen's QR on
+// [direction, a - b] (t, u) = a - origin, the nearest hit ahead on the segment.
+TEST(Planar, RayDistanceIsTheNearestSolvedHit) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> value(-10.0, 10.0),
+      angle(-std::numbers::pi, std::numbers::pi);
+  const RayTolerances tolerances{.parallel = 1e-12, .slack = 0.0, .origin_counts = false};
+  int hits = 0;
+  for (int k = 0; k < 1000; ++k) {
+    std::vector<Segment2> segments(1 + k % 8);
+    for (Segment2& s : segments) s = {{value(rng), value(rng)}, {value(rng), value(rng)}};
+    const Eigen::Vector2d origin(value(rng), value(rng));
+    const double heading = angle(rng);
+    const Eigen::Vector2d direction(std::cos(heading), std::sin(heading));
+    double reference = std::numeric_limits<double>::infinity();
+    bool borderline = false;  // a hit too near an end or parallel for the two solves to agree
+    for (const Segment2& s : segments) {
+      Eigen::Matrix2d system;
+      system << direction, s.a - s.b;
+      if (std::abs(cross(direction, (s.b - s.a).normalized())) < 1e-3) borderline = true;
+      const Eigen::Vector2d tu = system.colPivHouseholderQr().solve(s.a - origin);
+      if (std::abs(tu.y()) < 1e-9 || std::abs(tu.y() - 1.0) < 1e-9) borderline = true;
+      if (tu.x() > 0.0 && tu.y() >= 0.0 && tu.y() <= 1.0) reference = std::min(reference, tu.x());
+    }
+    if (borderline) continue;
+    const double t = ray_distance(origin, direction, segments, tolerances);
+    if (std::isinf(reference)) {
+      EXPECT_TRUE(std::isinf(t)) << k;
+    } else {
+      ++hits;
+      EXPECT_NEAR(t, reference, 1e-9) << k;
+      EXPECT_NEAR(
+          distance_to_nearest(origin + t * direction, segments.size(),
+                              [&](std::size_t i) -> const Segment2& { return segments[i]; }),
+          0.0, 1e-9)
+          << k;
+    }
+  }
+  EXPECT_GT(hits, 300);  // both outcomes were tried
+}
+
+TEST(Planar, RayDistanceKeepsTheCallersTolerances) {
+  const std::vector<Segment2> room = {{{-2.0, -1.0}, {2.0, -1.0}},
+                                      {{2.0, -1.0}, {2.0, 1.0}},
+                                      {{2.0, 1.0}, {-2.0, 1.0}},
+                                      {{-2.0, 1.0}, {-2.0, -1.0}}};
+  const RayTolerances exact{.parallel = 1e-12, .slack = 0.0, .origin_counts = false};
+  const Eigen::Vector2d centre(0.0, 0.0);
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, room, exact), 2.0);
+  EXPECT_EQ(ray_distance(centre, {0.0, -1.0}, room, exact), 1.0);
+  EXPECT_EQ(ray_distance(centre, {2.0, 0.0}, room, exact), 1.0);  // in lengths of direction
+  EXPECT_EQ(ray_distance(centre, {2.0, 1.0}, room, exact), 1.0);  // a corner: both walls' end
+  EXPECT_EQ(ray_distance({3.0, 0.0}, {1.0, 0.0}, room, exact),
+            std::numeric_limits<double>::infinity());  // every wall behind
+
+  // Slack: a wall ending 1e-13 short of the ray is met only with slack.
+  const std::vector<Segment2> short_wall = {{{1.0, 1e-13}, {1.0, 1.0}}};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, short_wall, exact),
+            std::numeric_limits<double>::infinity());
+  const RayTolerances slack{.parallel = 1e-12, .slack = 1e-12, .origin_counts = false};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, short_wall, slack), 1.0);
+
+  // Parallel: a wall along the ray is never met; one at a slope of 5e-14 only below the
+  // caller's parallel threshold.
+  const std::vector<Segment2> along = {{{1.0, 0.0}, {3.0, 0.0}}};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, along, exact),
+            std::numeric_limits<double>::infinity());
+  const std::vector<Segment2> sloped = {{{1.0, -5e-14}, {3.0, 5e-14}}};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, sloped, exact),
+            std::numeric_limits<double>::infinity());
+  const RayTolerances fine{.parallel = 1e-15, .slack = 0.0, .origin_counts = false};
+  EXPECT_DOUBLE_EQ(ray_distance(centre, {1.0, 0.0}, sloped, fine), 2.0);
+
+  // The origin: a wall through it is met at t = 0 only when the caller counts it.
+  const std::vector<Segment2> through = {{{0.0, -1.0}, {0.0, 1.0}}};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, through, exact),
+            std::numeric_limits<double>::infinity());
+  const RayTolerances closed{.parallel = 1e-12, .slack = 0.0, .origin_counts = true};
+  EXPECT_EQ(ray_distance(centre, {1.0, 0.0}, through, closed), 0.0);
+}
+
 TEST(Planar, TwoLinesMeetWhereEachPassesThrough) {
   std::mt19937 rng(10);
   std::uniform_real_distribution<double> value(-10.0, 10.0);

@@ -21,16 +21,8 @@ bool segments_meet(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eig
 
 double ray_distance(const MapFeatures& map, const Eigen::Vector2d& origin,
                     const Eigen::Vector2d& direction) {
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const MapWall& wall : map.walls) {
-    const Eigen::Vector2d s = wall.b - wall.a;
-    const double denominator = cross(direction, s);
-    if (std::abs(denominator) < 1e-15) continue;
-    const double t = cross(wall.a - origin, s) / denominator;
-    const double u = cross(wall.a - origin, direction) / denominator;
-    if (t >= 0.0 && u >= -1e-12 && u <= 1.0 + 1e-12) nearest = std::min(nearest, t);
-  }
-  return nearest;
+  constexpr RayTolerances tolerances{.parallel = 1e-15, .slack = 1e-12, .origin_counts = true};
+  return gridloc::ray_distance(origin, direction, map.walls, tolerances);
 }
 
 bool inside_free_space(const MapFeatures& map, const Eigen::Vector2d& p) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 
 namespace gridloc {
 
@@ -50,6 +51,38 @@ double distance_to_nearest(const Eigen::Vector2d& p, std::size_t count,
   for (std::size_t k = 0; k < count; ++k) {
     const auto& segment = segment_at(k);
     nearest = std::min(nearest, distance_to_segment(p, segment.a, segment.b));
+  }
+  return nearest;
+}
+
+/// What a ray cast counts as meeting a segment, each caller's own: a segment with
+/// |cross(direction, b - a)| < parallel is parallel to the ray (not met); a hit at
+/// a + u (b - a) is on it for u in [-slack, 1 + slack] (slack lets a ray through a vertex two
+/// segments share meet one of them); a hit at the origin itself (t = 0) counts only when
+/// origin_counts.
+struct RayTolerances {
+  double parallel = 0.0;
+  double slack = 0.0;
+  bool origin_counts = false;
+};
+
+/// The distance t along `direction` (in units of its length) from `origin` to the nearest of
+/// `segments` it meets, or +infinity: origin + t direction = a + u (b - a) solved by Cramer's
+/// rule, with the caller's tolerances.
+inline double ray_distance(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                           std::span<const Segment2> segments, const RayTolerances& tolerances) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Segment2& segment : segments) {
+    const Eigen::Vector2d along = segment.b - segment.a;
+    const double denominator = cross(direction, along);
+    if (std::abs(denominator) < tolerances.parallel) continue;
+    const Eigen::Vector2d to_start = segment.a - origin;
+    const double t = cross(to_start, along) / denominator;
+    const double u = cross(to_start, direction) / denominator;
+    const bool ahead = tolerances.origin_counts ? t >= 0.0 : t > 0.0;
+    if (ahead && u >= -tolerances.slack && u <= 1.0 + tolerances.slack) {
+      nearest = std::min(nearest, t);
+    }
   }
   return nearest;
 }
