@@ -1,8 +1,6 @@
 #include "gridloc/sensors/segment_world.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "gridloc/grids/error.hpp"
