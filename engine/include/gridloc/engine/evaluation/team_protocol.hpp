@@ -3,95 +3,41 @@
 /// at its true pose (the rotating IR sensor and its features, or a laser or sonar ring through
 /// the correlation engine), the links the team can measure, and the protocol of random teams
 /// in free space with lines of sight between linked robots.
+/// A robot's sensing turned into candidates (TeamWorld, TeamSensing, TeamCase,
+/// TeamCandidates) is engine/team/team_sensing.hpp's: a robot application needs no protocol.
 #include <cstdint>
 #include <functional>
-#include <memory>
-#include <optional>
-#include <string>
 #include <vector>
 
-#include "gridloc/engine/correlation/estimator.hpp"
-#include "gridloc/engine/team/estimate_candidates.hpp"
-#include "gridloc/engine/team/team_localization.hpp"
-#include "gridloc/grids/polygon_map.hpp"
-#include "gridloc/sensors/rotating_ir.hpp"
-#include "gridloc/sensors/sonar_ring.hpp"
+#include "gridloc/engine/team/team_sensing.hpp"
 
 namespace gridloc {
 
-/// The map a team localizes on: its walls and corners, the map itself for the sensors (a
-/// polygon map exactly when there is one) and its occupancy grid for the engine.
-struct TeamWorld {
-  std::optional<PolygonMap> polygons;
-  OccupancyMap grid;
-  MapFeatures features;
-};
-
-/// From a polygon map (features exact, grid rasterized at its resolution) or an occupancy map
-/// (features from its outline).
-TeamWorld make_team_world(const PolygonMap& map, const MapFeatureOptions& options = {});
-TeamWorld make_team_world(OccupancyMap map, const MapFeatureOptions& options = {});
-
-enum class TeamSensor { Ir, Laser, Sonar };
-
-/// "ir", "laser", "sonar".
-std::string to_string(TeamSensor sensor);
-/// Throws gridloc::Error naming the accepted names.
-TeamSensor parse_team_sensor(const std::string& name);
-
-struct TeamSensing {
-  TeamSensor sensor = TeamSensor::Ir;
-  IrSensorOptions ir;
-  FeatureOptions features;
-  CandidateOptions candidates;
-  int laser_beams = 360;
-  double laser_range_m = 8.0;
-  double laser_sigma_m = 0.01;
-  SonarRing ring;  ///< for TeamSensor::Sonar
-  EstimateCandidateOptions estimate;
-  CameraModel camera;
-  /// Sensor and link noise; false: exact readings and links, and no moving average (the
-  /// thesis filtered its real scans only: on exact ones it would round the corners).
-  bool noise = true;
-};
-
-/// The solver's options for a team sensing this way: the camera's, and for the estimator path
-/// (laser, sonar) placements as loose as the engine's lattice (5 cm, 3 deg) and rivals down to
-/// the candidates' min_score_ratio (a look-alike's score on a rasterized map falls a few per
-/// cent short of the truth's).
-TeamOptions solver_options(const TeamSensing& sensing);
-
-/// One simulated team.
-struct TeamCase {
-  std::vector<Pose2> truth;
-  std::vector<RangeScan> scans;                    ///< IR and laser; empty for sonar
-  std::vector<std::vector<ScanFeature>> features;  ///< IR
-  std::vector<TeamRobot> robots;
-  std::vector<VirtualLink> links;
-};
-
-/// Simulates teams on one world; holds the correlation engine a laser or sonar team needs.
+/// Simulates teams on one world: each robot's sensing at its true pose, turned into its
+/// candidates by the TeamCandidates it holds (as a real team's readings are).
 class TeamSimulator {
  public:
   /// Throws gridloc::Error for bad sensing options.
   TeamSimulator(const TeamWorld& world, TeamSensing sensing);
-  ~TeamSimulator();
-  TeamSimulator(TeamSimulator&&) noexcept;
+  explicit TeamSimulator(TeamCandidates candidates);
 
   /// Each robot's sensing at `poses` and the links they can measure (noise from `seed`).
   TeamCase simulate(const std::vector<Pose2>& poses, std::uint64_t seed) const;
-  /// A robot's candidates from a scan (IR: its features; laser: the engine's hypotheses).
-  TeamRobot robot_from_scan(const RangeScan& scan, std::vector<ScanFeature>* features) const;
-  /// A sonar robot's candidates from its ring's readings.
-  TeamRobot robot_from_sonar(const std::vector<double>& ranges) const;
+  /// TeamCandidates::from_scan.
+  TeamRobot robot_from_scan(const RangeScan& scan, std::vector<ScanFeature>* features) const {
+    return candidates_.from_scan(scan, features);
+  }
+  /// TeamCandidates::from_sonar.
+  TeamRobot robot_from_sonar(const std::vector<double>& ranges) const {
+    return candidates_.from_sonar(ranges);
+  }
 
-  const TeamWorld& world() const { return world_; }
-  const TeamSensing& sensing() const { return sensing_; }
+  const TeamCandidates& candidates() const { return candidates_; }
+  const TeamWorld& world() const { return candidates_.world(); }
+  const TeamSensing& sensing() const { return candidates_.sensing(); }
 
  private:
-  const TeamWorld& world_;
-  TeamSensing sensing_;
-  std::unique_ptr<CorrelationEstimator> engine_;
+  TeamCandidates candidates_;
 };
 
 struct TeamProtocolOptions {
