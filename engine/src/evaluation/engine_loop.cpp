@@ -12,12 +12,6 @@
 namespace gridloc {
 namespace {
 
-bool on_free_cell(const OccupancyMap& map, const Pose2& pose) {
-  const Pose2 local = map.geometry.to_grid_frame(pose);
-  const Cell cell = map.geometry.cell_of(local.x, local.y);
-  return map.geometry.contains(cell.ix, cell.iy) && map.at(cell.ix, cell.iy) == CellState::Free;
-}
-
 /// Where the robot truly was and where its odometry put it (start frame, heading 0: the
 /// robot keeps the start's heading).
 struct DriveSample {
@@ -27,12 +21,13 @@ struct DriveSample {
 
 /// The robot driving the planner's routes: one length scale and one heading drift per metre
 /// for the whole run (as drifting_odometry draws them), applied to every route segment. A
-/// point robot: it stops where its drift would take it off the free cells (a bump).
+/// point robot: it stops where its drift would take it off the cells the chair can reach
+/// (a bump).
 class DriftingRobot {
  public:
-  DriftingRobot(const OccupancyMap& map, const Pose2& true_start, const OdometryNoise& noise,
-                Rng& rng)
-      : map_(map),
+  DriftingRobot(const DisambiguationPlanner& planner, const Pose2& true_start,
+                const OdometryNoise& noise, Rng& rng)
+      : planner_(planner),
         truth_(true_start),
         scale_(1.0 + noise.frac * rng.gaussian()),
         drift_per_m_(noise.rad_per_m * rng.gaussian()) {}
@@ -74,14 +69,14 @@ class DriftingRobot {
     const Pose2 next{truth_.x + scale_ * (c * commanded.x() - s * commanded.y()),
                      truth_.y + scale_ * (s * commanded.x() + c * commanded.y()),
                      normalize_angle(truth_.theta + turn)};
-    if (!on_free_cell(map_, next)) {
+    if (!planner_.passable(next)) {
       bumped_ = true;  // stays for the rest of the route: a wall is in the way
       return;
     }
     truth_ = next;
   }
 
-  const OccupancyMap& map_;
+  const DisambiguationPlanner& planner_;
   Pose2 truth_;
   double scale_ = 1.0;
   double drift_per_m_ = 0.0;
@@ -207,38 +202,10 @@ StopSensing perfect_grid_sensing(const GridPlanningSpace& space, const Pose2& tr
       };
 }
 
-/// The farthest a sonar of the ring hears (m): the planner's sensor range.
-double sonar_range(const SonarRing& ring) {
-  double range = 0.0;
-  for (const SonarSpec& sonar : ring.sonars) range = std::max(range, sonar.max_range);
-  return range;
-}
-
-CorrelationOptions engine_options(const EngineLoopOptions& options, double ring_reach) {
-  CorrelationOptions correlation = options.correlation;
-  // The fused drive reaches as far as its oldest firing's sensors (the Localizer's rule).
-  correlation.reach_m =
-      (options.laser.enabled ? options.laser.max_range : ring_reach) + options.drive.max_distance_m;
-  return correlation;
-}
-
-CorrelationEstimator make_estimator(const OccupancyMap& map, const SonarRing& ring,
-                                    const EngineLoopOptions& options) {
+/// The options checked first, as a whole (their planner's own check follows).
+DisambiguationPlannerOptions checked_planner_options(const EngineLoopOptions& options) {
   validate(options);
-  const CorrelationOptions correlation = engine_options(options, ring.reach());
-  return options.laser.enabled ? CorrelationEstimator(map, correlation)
-                               : CorrelationEstimator(map, ring, correlation);
-}
-
-GridSpaceOptions space_options(const SonarRing& ring, const EngineLoopOptions& options) {
-  const double range = options.laser.enabled ? options.laser.max_range : sonar_range(ring);
-  return {range, options.equivalence, options.route_clearance_m};
-}
-
-/// Nothing sensed yet: every hypothesis stands.
-StopReading nothing_sensed(const Eigen::Vector2d&, const std::vector<Eigen::Vector2d>&,
-                           const std::vector<int>& active) {
-  return {active, {}};
+  return as_planner_options(options);
 }
 
 }  // namespace
@@ -254,13 +221,25 @@ void validate(const EngineLoopOptions& options) {
   }
 }
 
+DisambiguationPlannerOptions as_planner_options(const EngineLoopOptions& options) {
+  DisambiguationPlannerOptions planner;
+  planner.laser = options.laser.enabled;
+  planner.laser_range_m = options.laser.max_range;
+  planner.correlation = options.correlation;
+  planner.seeding = options.seeding;
+  planner.drive = options.drive;
+  planner.planner = options.planner;
+  planner.equivalence = options.equivalence;
+  planner.route_clearance_m = options.route_clearance_m;
+  return planner;
+}
+
 EngineLoop::EngineLoop(const OccupancyMap& map, const SonarRing& ring,
                        const EngineLoopOptions& options)
     : map_(map),
       ring_(ring),
       options_(options),
-      estimator_(make_estimator(map, ring, options)),
-      space_(map, space_options(ring, options)) {}
+      planner_(map, ring, checked_planner_options(options)) {}
 
 Observation EngineLoop::observe(const Pose2& truth, std::uint64_t seed) const {
   Observation observation;
@@ -272,17 +251,6 @@ Observation EngineLoop::observe(const Pose2& truth, std::uint64_t seed) const {
     observation.ranges = simulate_sonar(map_, ring_, truth, SonarSimOptions::realistic(seed));
   }
   return observation;
-}
-
-std::vector<Pose2> EngineLoop::hypotheses(const Observation& observation) const {
-  const HypothesisSetOptions& seeding = options_.seeding;
-  const Estimate global = estimator_.estimate(observation, estimator_.global_window(observation),
-                                              seeding.max_hypotheses + 1);
-  std::vector<Pose2> poses;
-  for (const TrackedHypothesis& seed : seed_hypotheses(global, seeding).hypotheses) {
-    if (on_free_cell(space_.passable(), seed.pose)) poses.push_back(seed.pose);
-  }
-  return poses;
 }
 
 int EngineLoop::true_hypothesis(const std::vector<Pose2>& hypotheses, const Pose2& truth) const {
@@ -304,20 +272,12 @@ EngineLoopRun EngineLoop::run(const Pose2& truth, std::vector<Pose2> hypotheses,
   MinimumDistanceOptions planner = options_.planner;
   planner.seed = seed;
   run.noise_free = localize_with_minimum_travel(
-      space_, run.hypotheses, perfect_grid_sensing(space_, truth, run.hypotheses), planner);
+      space(), run.hypotheses, perfect_grid_sensing(space(), truth, run.hypotheses), planner);
   Rng rng(seed);
-  DriftingRobot robot(space_.passable(), truth, options_.odometry, rng);
+  DriftingRobot robot(planner_, truth, options_.odometry, rng);
   run.plan = localize_with_minimum_travel(
-      space_, run.hypotheses, EngineSensing(*this, run.hypotheses, robot, seed), planner);
+      space(), run.hypotheses, EngineSensing(*this, run.hypotheses, robot, seed), planner);
   return run;
-}
-
-MinimumDistancePlan EngineLoop::next_stop(const std::vector<Pose2>& hypotheses,
-                                          std::uint64_t seed) const {
-  MinimumDistanceOptions planner = options_.planner;
-  planner.seed = seed;
-  planner.max_stops = 1;
-  return localize_with_minimum_travel(space_, hypotheses, nothing_sensed, planner);
 }
 
 }  // namespace gridloc

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/disambiguation/disambiguation_planner.hpp"
 #include "gridloc/engine/disambiguation/grid_space.hpp"
 #include "gridloc/engine/disambiguation/minimum_distance.hpp"
 #include "gridloc/engine/disambiguation/score_elimination.hpp"
@@ -47,6 +48,10 @@ struct EngineLoopOptions {
 /// Checks the options; throws gridloc::Error naming the field.
 void validate(const EngineLoopOptions& options);
 
+/// The real chair's planner the simulated one uses: the sensor, engine, seeding, drive window
+/// and planner of `options`.
+DisambiguationPlannerOptions as_planner_options(const EngineLoopOptions& options);
+
 /// One simulated run from a true start.
 struct EngineLoopRun {
   std::vector<Pose2> hypotheses;   ///< the global search's look-alikes
@@ -55,36 +60,41 @@ struct EngineLoopRun {
   MinimumDistancePlan noise_free;  ///< perfect sensing and motion on the grid twin
 };
 
+/// The simulated chair around a DisambiguationPlanner (which answers hypotheses() and
+/// next_stop() as for a real chair).
 class EngineLoop {
  public:
-  /// Builds the estimator and the grid twin once; throws gridloc::Error for bad options.
+  /// Builds the planner (the estimator and the grid twin) once; throws gridloc::Error for bad
+  /// options.
   EngineLoop(const OccupancyMap& map, const SonarRing& ring, const EngineLoopOptions& options);
 
   /// The observation at `truth`: one firing of the ring (or one scan) with realistic noise.
   Observation observe(const Pose2& truth, std::uint64_t seed) const;
-  /// The look-alikes the global search leaves for `observation` (a HypothesisSet's seeds on
-  /// cells the chair can reach, GridPlanningSpace::passable), best first.
-  std::vector<Pose2> hypotheses(const Observation& observation) const;
+  /// DisambiguationPlanner::hypotheses.
+  std::vector<Pose2> hypotheses(const Observation& observation) const {
+    return planner_.hypotheses(observation);
+  }
   /// The index of the hypothesis within truth_xy and truth_theta of `truth`, or -1.
   int true_hypothesis(const std::vector<Pose2>& hypotheses, const Pose2& truth) const;
   /// Runs the planner from `truth` (hypotheses as hypotheses() gave them) both ways.
   EngineLoopRun run(const Pose2& truth, std::vector<Pose2> hypotheses, std::uint64_t seed) const;
-  /// Where to drive first: the planner's first stop, nothing sensed yet (a real robot
-  /// drives there, observes and asks again).
-  MinimumDistancePlan next_stop(const std::vector<Pose2>& hypotheses, std::uint64_t seed) const;
+  /// DisambiguationPlanner::next_stop.
+  MinimumDistancePlan next_stop(const std::vector<Pose2>& hypotheses, std::uint64_t seed) const {
+    return planner_.next_stop(hypotheses, seed);
+  }
 
   const OccupancyMap& map() const { return map_; }
   const SonarRing& ring() const { return ring_; }
-  const GridPlanningSpace& space() const { return space_; }
-  const CorrelationEstimator& estimator() const { return estimator_; }
+  const GridPlanningSpace& space() const { return planner_.space(); }
+  const CorrelationEstimator& estimator() const { return planner_.estimator(); }
+  const DisambiguationPlanner& planner() const { return planner_; }
   const EngineLoopOptions& options() const { return options_; }
 
  private:
   OccupancyMap map_;
   SonarRing ring_;
   EngineLoopOptions options_;
-  CorrelationEstimator estimator_;
-  GridPlanningSpace space_;
+  DisambiguationPlanner planner_;
 };
 
 }  // namespace gridloc
