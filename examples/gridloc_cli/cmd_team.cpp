@@ -11,7 +11,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gridloc/engine/evaluation/team_protocol.hpp"
+#include "gridloc/engine/team/team_sensing.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "gridloc/grids/polygon_map.hpp"
@@ -21,6 +21,7 @@
 #include "stdin_input.hpp"
 #include "team_io.hpp"
 #include "team_render.hpp"
+#include "team_simulated.hpp"
 
 namespace gridloc::cli {
 namespace {
@@ -51,11 +52,12 @@ TeamSensing sensing_from(const TeamArgs& args) {
   return sensing;
 }
 
-TeamCase team_from(const TeamArgs& args, const TeamSimulator& simulator) {
+TeamCase team_from(const TeamArgs& args, TeamCandidates candidates) {
   if (args.poses.empty() == args.robots.empty())
     throw Error("team: give either --poses (simulated) or --robots robots.json (measured)");
-  if (!args.poses.empty()) return simulator.simulate(parse_team_poses(args.poses), args.seed);
-  return load_team(args.robots, simulator);
+  if (!args.poses.empty())
+    return simulated_team(std::move(candidates), parse_team_poses(args.poses), args.seed);
+  return load_team(args.robots, candidates);
 }
 
 void print_summary(const TeamCase& team, const TeamAnswer& answer) {
@@ -74,7 +76,7 @@ void print_summary(const TeamCase& team, const TeamAnswer& answer) {
               answer.links_used.size());
 }
 
-TeamPicture picture_of(const TeamArgs& args, const TeamSimulator& simulator, const TeamCase& team,
+TeamPicture picture_of(const TeamArgs& args, const TeamWorld& world, const TeamCase& team,
                        const TeamAnswer& answer) {
   TeamPicture picture;
   picture.title = fs::path(args.map).filename().string() + ": " +
@@ -83,9 +85,9 @@ TeamPicture picture_of(const TeamArgs& args, const TeamSimulator& simulator, con
   picture.caption = "team " + to_string(answer.verdict) + ", " +
                     std::to_string(answer.solutions.size()) + " solution" +
                     (answer.solutions.size() == 1 ? "" : "s");
-  picture.polygons = simulator.world().polygons;
-  picture.grid = simulator.world().grid;
-  picture.features = simulator.world().features;
+  picture.polygons = world.polygons;
+  picture.grid = world.grid;
+  picture.features = world.features;
   for (const TeamRobot& robot : team.robots) picture.candidates.push_back(robot.candidates);
   picture.solutions = answer.solutions;
   picture.links = team.links;
@@ -94,29 +96,29 @@ TeamPicture picture_of(const TeamArgs& args, const TeamSimulator& simulator, con
   return picture;
 }
 
-void write_outputs(const TeamArgs& args, const TeamSimulator& simulator, const TeamCase& team,
+void write_outputs(const TeamArgs& args, const TeamWorld& world, const TeamCase& team,
                    const TeamAnswer& answer, const nlohmann::json& out) {
   const fs::path folder = output_folder(args.out);
   const std::string json_path = (folder / "team.json").string();
   const std::string png_path = (folder / "team.png").string();
   write_json_file(json_path, out, "the team's answer");
-  plot::write_png(png_path, render_team(picture_of(args, simulator, team, answer)));
+  plot::write_png(png_path, render_team(picture_of(args, world, team, answer)));
   if (!args.json) std::printf("wrote %s and %s\n", png_path.c_str(), json_path.c_str());
 }
 
 void run(const TeamArgs& args) {
   const TeamWorld world = load_team_world(args.map);
   const TeamSensing sensing = sensing_from(args);
-  const TeamSimulator simulator(world, sensing);
-  const TeamCase team = team_from(args, simulator);
+  const TeamCase team = team_from(args, TeamCandidates(world, sensing));
   const TeamAnswer answer =
       localize_team(team.robots, team.links, world.features, solver_options(sensing));
-  const nlohmann::json out = team_json(team, answer);
+  nlohmann::json out = team_json(team, answer);
+  if (!team.truth.empty()) out["correct"] = simulated_team_correct(answer, team.truth);
   if (args.json)
     std::cout << out.dump(2) << "\n";
   else
     print_summary(team, answer);
-  if (!args.out.empty()) write_outputs(args, simulator, team, answer, out);
+  if (!args.out.empty()) write_outputs(args, world, team, answer, out);
 }
 
 }  // namespace

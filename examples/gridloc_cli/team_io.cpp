@@ -91,14 +91,14 @@ RangeScan inline_scan(const nlohmann::json& rows, const std::string& where, doub
 }
 
 TeamRobot read_robot(const nlohmann::json& entry, const fs::path& folder, std::size_t index,
-                     const TeamSimulator& simulator, TeamCase& team) {
+                     const TeamCandidates& candidates, TeamCase& team) {
   const std::string where = "robot " + std::to_string(index);
   if (!entry.is_object()) throw Error(where + ": expected an object with a scan or readings");
-  const TeamSensing& sensing = simulator.sensing();
+  const TeamSensing& sensing = candidates.sensing();
   if (sensing.sensor == TeamSensor::Sonar) {
     if (!entry.contains("readings") || !entry["readings"].is_string())
       throw Error(where + ": a sonar team gives each robot's \"readings\" file");
-    return simulator.robot_from_sonar(
+    return candidates.from_sonar(
         load_readings((folder / entry["readings"].get<std::string>()).string(), limits()));
   }
   if (!entry.contains("scan")) throw Error(where + ": missing \"scan\" (a CSV file or rows)");
@@ -118,7 +118,7 @@ TeamRobot read_robot(const nlohmann::json& entry, const fs::path& folder, std::s
     throw Error(where + ": \"scan\" is a CSV file name or an array of [angle_rad, range_m]");
   }
   std::vector<ScanFeature> features;
-  TeamRobot robot = simulator.robot_from_scan(scan, &features);
+  TeamRobot robot = candidates.from_scan(scan, &features);
   team.scans.push_back(scan);
   team.features.push_back(std::move(features));
   return robot;
@@ -150,7 +150,7 @@ VirtualLink read_link(const nlohmann::json& entry, std::size_t index) {
 
 }  // namespace
 
-TeamCase load_team(const std::string& path, const TeamSimulator& simulator) {
+TeamCase load_team(const std::string& path, const TeamCandidates& candidates) {
   const nlohmann::json root = read_json(path);
   if (!root.is_object() || !root.contains("robots") || !root["robots"].is_array() ||
       root["robots"].empty())
@@ -159,7 +159,7 @@ TeamCase load_team(const std::string& path, const TeamSimulator& simulator) {
   TeamCase team;
   try {
     for (std::size_t r = 0; r < root["robots"].size(); ++r)
-      team.robots.push_back(read_robot(root["robots"][r], folder, r, simulator, team));
+      team.robots.push_back(read_robot(root["robots"][r], folder, r, candidates, team));
     if (root.contains("links")) {
       if (!root["links"].is_array()) throw Error("\"links\" must be an array");
       for (std::size_t l = 0; l < root["links"].size(); ++l)
@@ -262,10 +262,6 @@ nlohmann::json team_json(const TeamCase& team, const TeamAnswer& answer) {
                         {"links_used", used},
                         {"swaps", swaps},
                         {"truncated", answer.truncated}};
-  if (!team.truth.empty()) {
-    TeamProtocolOptions judged;
-    out["correct"] = judge(answer, team.truth, judged).correct;
-  }
   return out;
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gridloc/engine/evaluation/team_protocol.hpp"
+#include "gridloc/engine/team/team_sensing.hpp"
 
 namespace gridloc::cli {
 
@@ -25,10 +25,11 @@ void parse_link_noise(const std::string& text, CameraModel& camera);
 ///               "back_bearing_deg": -150 (optional)}, ...]}
 /// Scans are read as the team's sensor reads them (IR: load_ir_scan_csv's units and
 /// clamping; laser: load_scan_csv). Throws gridloc::Error naming the file and the entry.
-TeamCase load_team(const std::string& path, const TeamSimulator& simulator);
+TeamCase load_team(const std::string& path, const TeamCandidates& candidates);
 
 /// The answer: robots (pose, verdict, candidates, features), solutions, unique, links_used,
-/// verdict, swaps, and with a truth each robot's error.
+/// verdict, swaps, and with a truth each robot's error (the command adds whether it is
+/// correct, team_simulated.hpp).
 nlohmann::json team_json(const TeamCase& team, const TeamAnswer& answer);
 
 }  // namespace gridloc::cli

@@ -1,0 +1,16 @@
+#include "team_simulated.hpp"
+
+#include "gridloc/engine/evaluation/team_protocol.hpp"
+
+namespace gridloc::cli {
+
+TeamCase simulated_team(TeamCandidates candidates, const std::vector<Pose2>& poses,
+                        std::uint64_t seed) {
+  return TeamSimulator(std::move(candidates)).simulate(poses, seed);
+}
+
+bool simulated_team_correct(const TeamAnswer& answer, const std::vector<Pose2>& truth) {
+  return judge(answer, truth, TeamProtocolOptions{}).correct;
+}
+
+}  // namespace gridloc::cli
