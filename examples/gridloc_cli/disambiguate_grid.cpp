@@ -5,7 +5,8 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "gridloc/engine/evaluation/engine_loop.hpp"
+#include "disambiguate_simulated.hpp"
+#include "gridloc/engine/disambiguation/disambiguation_planner.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/sensors/range_scan.hpp"
 #include "gridloc/sensors/readings_io.hpp"
@@ -16,13 +17,12 @@
 namespace gridloc::cli {
 namespace {
 
-/// The sensor: a laser for --scan (or --pose with --sensor laser), else the sonar ring.
-EngineLoopOptions loop_options(const DisambiguateArgs& args) {
-  EngineLoopOptions options;
+/// The sensor: a laser for --scan, else the sonar ring.
+DisambiguationPlannerOptions first_stop_options(const DisambiguateArgs& args) {
+  DisambiguationPlannerOptions options;
   options.planner = planner_options(args);
-  options.laser.enabled =
-      !args.scan.empty() || (args.scan.empty() && args.readings.empty() && args.sensor == "laser");
-  options.laser.max_range = args.max_range;
+  options.laser = !args.scan.empty();
+  options.laser_range_m = args.max_range;
   return options;
 }
 
@@ -51,39 +51,16 @@ Observation sensed_at_start(const DisambiguateArgs& args) {
   return observation;
 }
 
-void print_hypotheses(const std::vector<Pose2>& hypotheses) {
-  std::printf("%zu hypotheses from the engine's global search\n", hypotheses.size());
-  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
-    const Pose2& h = hypotheses[i];
-    std::printf("  %2zu  (%.3f, %.3f, %.3f rad)\n", i, h.x, h.y, h.theta);
-  }
-}
-
-/// --pose: the chair simulated through the whole plan, beside the noise-free plan.
-nlohmann::json simulated_run(const EngineLoop& loop, const DisambiguateArgs& args) {
-  const Pose2 truth = parse_pose(args.pose, "--pose");
-  std::vector<Pose2> hypotheses = loop.hypotheses(loop.observe(truth, args.seed));
-  const EngineLoopRun run = loop.run(truth, std::move(hypotheses), args.seed);
-  nlohmann::json out = plan_json(run.plan, run.true_hypothesis);
-  out["noise_free_path_length_m"] = run.noise_free.path_length;
-  out["noise_free_resolved"] = run.noise_free.resolved;
-  if (args.json) return out;
-  print_hypotheses(run.hypotheses);
-  std::printf("%s after %zu stops, path %.3f m (noise-free plan: %.3f m); the truth %s\n",
-              run.plan.resolved ? "resolved" : run.plan.ended.c_str(), run.plan.stops.size(),
-              run.plan.path_length, run.noise_free.path_length,
-              out["true_hypothesis_survived"] == true ? "stands" : "was lost");
-  return out;
-}
-
 /// --readings or --scan: the hypotheses and the first stop (nothing sensed there yet).
-nlohmann::json first_stop(const EngineLoop& loop, const DisambiguateArgs& args) {
-  const std::vector<Pose2> hypotheses = loop.hypotheses(sensed_at_start(args));
-  const MinimumDistancePlan plan = loop.next_stop(hypotheses, args.seed);
+nlohmann::json first_stop(const OccupancyMap& map, const SonarRing& ring,
+                          const DisambiguateArgs& args) {
+  const DisambiguationPlanner planner(map, ring, first_stop_options(args));
+  const std::vector<Pose2> hypotheses = planner.hypotheses(sensed_at_start(args));
+  const MinimumDistancePlan plan = planner.next_stop(hypotheses, args.seed);
   nlohmann::json out = plan_json(plan, -1);
   out["ended"] = plan.stops.empty() ? plan.ended : "drive to the stop, sense, and ask again";
   if (args.json) return out;
-  print_hypotheses(hypotheses);
+  print_grid_hypotheses(hypotheses);
   if (plan.stops.empty()) {
     std::printf("%s: no stop to drive to\n", plan.resolved ? "unique" : plan.ended.c_str());
   } else {
@@ -98,6 +75,14 @@ nlohmann::json first_stop(const EngineLoop& loop, const DisambiguateArgs& args) 
 
 }  // namespace
 
+void print_grid_hypotheses(const std::vector<Pose2>& hypotheses) {
+  std::printf("%zu hypotheses from the engine's global search\n", hypotheses.size());
+  for (std::size_t i = 0; i < hypotheses.size(); ++i) {
+    const Pose2& h = hypotheses[i];
+    std::printf("  %2zu  (%.3f, %.3f, %.3f rad)\n", i, h.x, h.y, h.theta);
+  }
+}
+
 void run_disambiguate_on_grid(const DisambiguateArgs& args) {
   check_inputs(args);
   make_out_dir(args.out);
@@ -105,8 +90,9 @@ void run_disambiguate_on_grid(const DisambiguateArgs& args) {
       load_sonar_ring(args.ring.empty() ? data_dir() + "/sensors/wheelchair_14.yaml"
                                         : input_path(args.ring, "--ring"),
                       limits());
-  const EngineLoop loop(load_map(args.map), ring, loop_options(args));
-  const nlohmann::json out = args.pose.empty() ? first_stop(loop, args) : simulated_run(loop, args);
+  const OccupancyMap map = load_map(args.map);
+  const nlohmann::json out =
+      args.pose.empty() ? first_stop(map, ring, args) : simulated_run_on_grid(map, ring, args);
   if (args.json) std::cout << out.dump(2) << "\n";
   if (!args.out.empty()) {
     write_plan_json(args.out, out);
