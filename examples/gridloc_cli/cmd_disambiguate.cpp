@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "disambiguate_common.hpp"
 #include "disambiguate_grid.hpp"
+#include "disambiguate_simulated.hpp"
 #include "disambiguation_render.hpp"
 #include "gridloc/engine/disambiguation/hypothesis_generation.hpp"
 #include "gridloc/engine/disambiguation/minimum_distance.hpp"
@@ -178,14 +179,14 @@ void run_on_polygons(const DisambiguateArgs& args) {
   if (!args.out.empty()) write_outputs(args, map, plan, true_index, bound, out);
 }
 
-void run(const DisambiguateArgs& args) {
+void run(const DisambiguateArgs& args, const GridDisambiguationSimulation& simulation) {
   if (is_polygon_map_input(args.map)) return run_on_polygons(args);
-  run_disambiguate_on_grid(args);
+  run_disambiguate_on_grid(args, simulation);
 }
 
 }  // namespace
 
-void add_disambiguate(CLI::App& app) {
+void add_disambiguate(CLI::App& app, const GridDisambiguationSimulation& simulation) {
   auto args = std::make_shared<DisambiguateArgs>();
   auto* cmd = app.add_subcommand(
       "disambiguate",
@@ -241,7 +242,7 @@ void add_disambiguate(CLI::App& app) {
                   "folder for disambiguation.png and disambiguation.json (created if missing)");
   cmd->add_flag("--json", args->json, "print JSON instead of the summary");
   read_stdin_at_most_once(cmd, {{"--map"}, {"--ring"}, {"--scan"}, {"--readings"}});
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, simulation] { run(*args, simulation); });
 }
 
 }  // namespace gridloc::cli

@@ -52,11 +52,12 @@ TeamSensing sensing_from(const TeamArgs& args) {
   return sensing;
 }
 
-TeamCase team_from(const TeamArgs& args, TeamCandidates candidates) {
+TeamCase team_from(const TeamArgs& args, TeamCandidates candidates,
+                   const TeamSimulation& simulation) {
   if (args.poses.empty() == args.robots.empty())
     throw Error("team: give either --poses (simulated) or --robots robots.json (measured)");
   if (!args.poses.empty())
-    return simulated_team(std::move(candidates), parse_team_poses(args.poses), args.seed);
+    return simulation.simulate(std::move(candidates), parse_team_poses(args.poses), args.seed);
   return load_team(args.robots, candidates);
 }
 
@@ -106,14 +107,14 @@ void write_outputs(const TeamArgs& args, const TeamWorld& world, const TeamCase&
   if (!args.json) std::printf("wrote %s and %s\n", png_path.c_str(), json_path.c_str());
 }
 
-void run(const TeamArgs& args) {
+void run(const TeamArgs& args, const TeamSimulation& simulation) {
   const TeamWorld world = load_team_world(args.map);
   const TeamSensing sensing = sensing_from(args);
-  const TeamCase team = team_from(args, TeamCandidates(world, sensing));
+  const TeamCase team = team_from(args, TeamCandidates(world, sensing), simulation);
   const TeamAnswer answer =
       localize_team(team.robots, team.links, world.features, solver_options(sensing));
   nlohmann::json out = team_json(team, answer);
-  if (!team.truth.empty()) out["correct"] = simulated_team_correct(answer, team.truth);
+  if (!team.truth.empty()) out["correct"] = simulation.correct(answer, team.truth);
   if (args.json)
     std::cout << out.dump(2) << "\n";
   else
@@ -123,7 +124,7 @@ void run(const TeamArgs& args) {
 
 }  // namespace
 
-void add_team(CLI::App& app) {
+void add_team(CLI::App& app, const TeamSimulation& simulation) {
   auto args = std::make_shared<TeamArgs>();
   auto* cmd = app.add_subcommand(
       "team", "Localize several robots together through the virtual links between them (seed 003)");
@@ -156,7 +157,7 @@ void add_team(CLI::App& app) {
   cmd->add_option("--out", args->out, "folder for team.png and team.json");
   cmd->add_flag("--json", args->json, "print the answer as JSON");
   read_stdin_at_most_once(cmd, {{"--map"}, {"--robots"}, {"--ring"}});
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args, simulation] { run(*args, simulation); });
 }
 
 }  // namespace gridloc::cli

@@ -7,6 +7,9 @@
 
 namespace gridloc::cli {
 
+struct GridDisambiguationSimulation;  // disambiguate_simulated.hpp
+struct TeamSimulation;                // team_simulated.hpp
+
 void add_localize(CLI::App& app);
 void add_simulate(CLI::App& app);
 void add_demo(CLI::App& app);
@@ -17,8 +20,10 @@ void add_heatmap(CLI::App& app);
 void add_hallway(CLI::App& app);
 void add_sectors(CLI::App& app);
 void add_track(CLI::App& app);
-void add_disambiguate(CLI::App& app);
-void add_team(CLI::App& app);
+/// `simulation` runs --pose on an occupancy map (the gridloc tool passes the evaluation's).
+void add_disambiguate(CLI::App& app, const GridDisambiguationSimulation& simulation);
+/// `simulation` runs --poses (the gridloc tool passes the team protocol's).
+void add_team(CLI::App& app, const TeamSimulation& simulation);
 void add_merge(CLI::App& app);
 
 nlohmann::json to_json(const Pose2& pose);

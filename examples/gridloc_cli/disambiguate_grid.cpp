@@ -83,7 +83,8 @@ void print_grid_hypotheses(const std::vector<Pose2>& hypotheses) {
   }
 }
 
-void run_disambiguate_on_grid(const DisambiguateArgs& args) {
+void run_disambiguate_on_grid(const DisambiguateArgs& args,
+                              const GridDisambiguationSimulation& simulation) {
   check_inputs(args);
   make_out_dir(args.out);
   const SonarRing ring =
@@ -92,7 +93,7 @@ void run_disambiguate_on_grid(const DisambiguateArgs& args) {
                       limits());
   const OccupancyMap map = load_map(args.map);
   const nlohmann::json out =
-      args.pose.empty() ? first_stop(map, ring, args) : simulated_run_on_grid(map, ring, args);
+      args.pose.empty() ? first_stop(map, ring, args) : simulation.run(map, ring, args);
   if (args.json) std::cout << out.dump(2) << "\n";
   if (!args.out.empty()) {
     write_plan_json(args.out, out);

@@ -13,7 +13,11 @@ namespace gridloc::cli {
 /// The hypotheses as the summary lists them.
 void print_grid_hypotheses(const std::vector<Pose2>& hypotheses);
 
-/// Runs it and prints JSON (--json) or a summary; --out gets disambiguation.json.
-void run_disambiguate_on_grid(const DisambiguateArgs& args);
+struct GridDisambiguationSimulation;  // disambiguate_simulated.hpp
+
+/// Runs it (--pose through `simulation`) and prints JSON (--json) or a summary; --out gets
+/// disambiguation.json.
+void run_disambiguate_on_grid(const DisambiguateArgs& args,
+                              const GridDisambiguationSimulation& simulation);
 
 }  // namespace gridloc::cli

@@ -39,4 +39,8 @@ nlohmann::json simulated_run_on_grid(const OccupancyMap& map, const SonarRing& r
   return out;
 }
 
+GridDisambiguationSimulation engine_loop_simulation() {
+  return {simulated_run_on_grid};
+}
+
 }  // namespace gridloc::cli

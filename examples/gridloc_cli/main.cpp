@@ -6,9 +6,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include "disambiguate_simulated.hpp"
 #include "gridloc/grids/error.hpp"
 #include "limit_options.hpp"
 #include "stdin_input.hpp"
+#include "team_simulated.hpp"
 
 namespace {
 
@@ -50,8 +52,8 @@ int main(int argc, char** argv) {
   gridloc::cli::add_hallway(app);
   gridloc::cli::add_heatmap(app);
   gridloc::cli::add_sectors(app);
-  gridloc::cli::add_disambiguate(app);
-  gridloc::cli::add_team(app);
+  gridloc::cli::add_disambiguate(app, gridloc::cli::engine_loop_simulation());
+  gridloc::cli::add_team(app, gridloc::cli::team_protocol_simulation());
   gridloc::cli::add_track(app);
   gridloc::cli::add_merge(app);
   try {

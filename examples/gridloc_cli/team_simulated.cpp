@@ -13,4 +13,8 @@ bool simulated_team_correct(const TeamAnswer& answer, const std::vector<Pose2>& 
   return judge(answer, truth, TeamProtocolOptions{}).correct;
 }
 
+TeamSimulation team_protocol_simulation() {
+  return {simulated_team, simulated_team_correct};
+}
+
 }  // namespace gridloc::cli
