@@ -83,7 +83,9 @@ TeamRobot TeamCandidates::from_scan(const RangeScan& scan,
     if (features) *features = std::move(found);
     return robot;
   }
-  if (!engine_) throw Error("robot_from_scan: a sonar team takes readings, not scans");
+  if (sensing_.sensor == TeamSensor::Sonar) {
+    throw Error("robot_from_scan: a sonar team takes readings, not scans");
+  }
   Observation observation;
   observation.scan = scan;
   return from_engine(observation);
