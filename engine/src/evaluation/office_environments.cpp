@@ -11,6 +11,7 @@
 
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/limits.hpp"
+#include "gridloc/grids/option_checks.hpp"
 #include "gridloc/sensors/rng.hpp"
 
 namespace gridloc {
@@ -241,12 +242,6 @@ void check_at_most(int value, int most, const std::string& name, const std::stri
   }
 }
 
-void check_probability(double p, const std::string& name) {
-  if (!(p >= 0.0 && p <= 1.0)) {
-    throw Error("random_office: " + name + " must be in [0, 1], got " + std::to_string(p));
-  }
-}
-
 void check_options(const OfficeOptions& o) {
   const ResourceLimits limits;
   if (o.target_vertices < 4 || o.target_vertices > limits.max_vertices) {
@@ -259,12 +254,10 @@ void check_options(const OfficeOptions& o) {
   check_range(o.min_corridor_length, o.max_corridor_length, "corridor length");
   check_at_most(o.corridor_width, o.max_corridor_length, "corridor_width", "max_corridor_length");
   check_at_most(o.door_width, o.min_room_width, "door_width", "min_room_width");
-  check_probability(o.repeat_probability, "repeat_probability");
-  check_probability(o.notch_probability, "notch_probability");
-  check_probability(o.branch_probability, "branch_probability");
-  if (!(o.resolution > 0.0)) {
-    throw Error("random_office: resolution must be positive, got " + std::to_string(o.resolution));
-  }
+  require_share(o.repeat_probability, "random_office", "repeat_probability");
+  require_share(o.notch_probability, "random_office", "notch_probability");
+  require_share(o.branch_probability, "random_office", "branch_probability");
+  require_positive(o.resolution, "random_office", "resolution");
 }
 
 /// Grows one office from its seed: pieces drawn in a fixed order of Rng calls (no std
