@@ -13,8 +13,7 @@ namespace {
 EngineLoopOptions loop_options(const DisambiguateArgs& args) {
   EngineLoopOptions options;
   options.planner = planner_options(args);
-  options.laser.enabled =
-      !args.scan.empty() || (args.scan.empty() && args.readings.empty() && args.sensor == "laser");
+  options.laser.enabled = !args.scan.empty() || (args.readings.empty() && args.sensor == "laser");
   options.laser.max_range = args.max_range;
   return options;
 }
