@@ -106,9 +106,9 @@ std::unique_ptr<Estimator> make_sector_estimator(
   }
   auto sectors = std::make_shared<const SectorEstimator>(std::move(computed), options);
   // The local search on its own 2.5 cm lattice: the sector fix is already within
-  // centimetres (SectorCorrelationOptions::resolution).
+  // centimetres (kSectorRefinementResolution).
   CorrelationOptions fine = correlation->options();
-  fine.resolution = SectorCorrelationOptions{}.resolution;
+  fine.resolution = kSectorRefinementResolution;
   auto local = std::make_shared<const CorrelationEstimator>(
       rasterize_polygon_map(polygons, fine.resolution), fine);
   return std::make_unique<SectorCorrelationEstimator>(sectors, local);

@@ -29,7 +29,7 @@ struct SectorEvalOptions {
   SectorEstimatorOptions sectors;
   SectorCorrelationOptions refinement;  ///< of sectors+correlation
   /// The lattice (and rasterization) of sectors+correlation's local search (m).
-  double refinement_resolution = SectorCorrelationOptions{}.resolution;
+  double refinement_resolution = kSectorRefinementResolution;
   /// The correlation's options; reach_m is set to max_range. Its map is the polygon map
   /// rasterized at the map's own resolution.
   CorrelationOptions correlation;

@@ -63,11 +63,12 @@ struct SectorCorrelationOptions {
   /// (a vertex located from a few noisy readings) are centimetres, a wrong vertex tens.
   double half_xy = 0.3;                ///< m
   double half_theta = 0.174532925199;  ///< rad, 10 deg
-  /// The lattice (and the polygon map's rasterization) the local search runs on (m): the
-  /// sector fix is already within centimetres. The caller builds the CorrelationEstimator
-  /// it passes at this resolution.
-  double resolution = 0.025;
 };
+
+/// The lattice (and the polygon map's rasterization) a sector fix's local search is built on
+/// by default (m): the fix is already within centimetres. SectorCorrelationEstimator takes
+/// the CorrelationEstimator its caller built, at whatever resolution.
+inline constexpr double kSectorRefinementResolution = 0.025;
 
 /// Seed 000's sector fix refined by the correlation engine's exact local search around it
 /// (issue 6's optional refinement): the label finds the place without a prior, the search the
