@@ -48,6 +48,9 @@ struct TrackArgs {
   double cells_per_update = SlicedSearchOptions{}.cells_per_update;
   int catch_up_steps = SlicedSearchOptions{}.catch_up_steps;
   double search_resolution = SlicedSearchOptions{}.resolution;
+  double light_place_weight = LocalizerOptions{}.light_place_weight;
+  double reported_floor_m = LocalizerOptions{}.reported_floor_m;
+  double reported_floor_deg = rad2deg(LocalizerOptions{}.reported_floor_rad);
   bool global = false, json = false, truth = false, prior_from_log = false, fuse_drive = false;
   bool keep_re_searches = false, unfused_positions = false;
   int every = 1;
@@ -166,6 +169,10 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
                "--max-window-turn", args.max_window_turn_deg,
                "must be a finite number of degrees >= " + message_number(min_turn_deg));
   if (args.trial_count > 0 && !args.global) throw Error("--trials needs --global");
+  require_flag(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0, "--reported-floor-m",
+               args.reported_floor_m, "must lie in [0, 100] m");
+  require_flag(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0,
+               "--reported-floor-deg", args.reported_floor_deg, "must lie in [0, 180] degrees");
   require_flag(args.resolution >= 0.0 && std::isfinite(args.resolution), "--resolution",
                args.resolution, "must be a finite cell size >= 0 (0: the map's cell)");
   require_flag(args.weak_fit_ratio >= 0.0 && args.weak_fit_ratio <= 1.0, "--weak-fit-ratio",
@@ -194,6 +201,9 @@ LogTrackingOptions tracking_options(const TrackArgs& args, const CarmenLog& log,
   options.localizer.research.resolution = args.search_resolution;
   options.localizer.research.drop_once_localized = !args.keep_re_searches;
   options.localizer.fuse_carried_position = !args.unfused_positions;
+  options.localizer.light_place_weight = args.light_place_weight;
+  options.localizer.reported_floor_m = args.reported_floor_m;
+  options.localizer.reported_floor_rad = deg2rad(args.reported_floor_deg);
   const OdometryNoise model = parse_odometry_noise(args.odometry_error, "--odometry-error");
   options.localizer.odometry_error_per_m = options.localizer.jump_gate.odometry_error_per_m =
       model.frac;
@@ -398,6 +408,18 @@ void add_sensor_options(CLI::App* cmd, TrackArgs& args) {
       ->capture_default_str();
   cmd->add_option("--max-window-turn", args.max_window_turn_deg,
                   "a tracked place's window spans at most this many degrees either way")
+      ->capture_default_str();
+  cmd->add_option("--light-place-weight", args.light_place_weight,
+                  "a place holding less than this share of the weights is re-scored in its "
+                  "window alone: no look-alikes split off it, no second, wider look (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--reported-floor-m", args.reported_floor_m,
+                  "added to the reported position standard deviations in quadrature: the "
+                  "map's own error, which a scan cannot see (README, issue 19); tracks and "
+                  "verdicts do not change")
+      ->capture_default_str();
+  cmd->add_option("--reported-floor-deg", args.reported_floor_deg,
+                  "the same for the heading (degrees)")
       ->capture_default_str();
   cmd->add_option("--search-resolution", args.search_resolution,
                   "cell (m) of the coarse copy of the map the whole-map searches run on, their "

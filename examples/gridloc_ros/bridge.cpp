@@ -46,6 +46,8 @@ gridloc::LocalizerOptions localizer_options(const BridgeOptions& options, double
   localizer.odometry_turn_error_per_m = localizer.jump_gate.odometry_turn_error_per_m =
       gridloc::deg2rad(options.odometry_turn_deg_per_m);
   localizer.jump_gate.settle_first = options.settle_first;
+  localizer.reported_floor_m = options.reported_floor_m;
+  localizer.reported_floor_rad = gridloc::deg2rad(options.reported_floor_deg);
   return localizer;
 }
 

@@ -48,6 +48,10 @@ struct BridgeOptions {
   /// From no prior, the first place is `localized` only once the drive has borne it out
   /// (gridloc::JumpGateOptions::settle_first); false: one scan may localize.
   bool settle_first = true;
+  /// Laser mode: added to the reported covariance (m and degrees, one standard deviation;
+  /// gridloc::LocalizerOptions::reported_floor_m): the map's own error, which a scan cannot see.
+  double reported_floor_m = 0.02;
+  double reported_floor_deg = 0.5;
 };
 
 struct Answer {

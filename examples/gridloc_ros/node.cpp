@@ -95,6 +95,9 @@ class Node {
     private_nh_.param("odometry_turn_deg_per_m", options_.odometry_turn_deg_per_m,
                       options_.odometry_turn_deg_per_m);
     private_nh_.param("settle_first", options_.settle_first, options_.settle_first);
+    private_nh_.param("reported_floor_m", options_.reported_floor_m, options_.reported_floor_m);
+    private_nh_.param("reported_floor_deg", options_.reported_floor_deg,
+                      options_.reported_floor_deg);
     private_nh_.param<std::string>("sonar_frame_prefix", sonar_prefix_, "sonar_");
     private_nh_.param("sonar_frames", sonar_frames_, std::vector<std::string>{});
     if (!options_.ring_file.empty()) sonar_frames_.clear();  // the ring file wins

@@ -5,16 +5,19 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "../localizer/laser_cases.hpp"
 #include "cli_support.hpp"
+#include "gridloc/engine/localizer/localizer.hpp"
 #include "gridloc/grids/map_io.hpp"
 #include "test_support.hpp"
 
@@ -97,20 +100,48 @@ TEST_F(TrackCli, OnTheThinnedGridEveryScanIsTrackedToo) {
   }
 }
 
-TEST_F(TrackCli, GloballyTheDriveFavoursTheTruthWithoutAWrongAnswer) {
-  // A 3 m front laser in a corridor of look-alikes: the drive's scans fused into one view.
-  const std::vector<nlohmann::json> steps =
-      track("--global --every 2 --odometry-noise 0.02,1 --fuse-drive");
-  ASSERT_EQ(steps.size(), 7u);  // scans 0, 2, ..., 12
-  for (const nlohmann::json& step : steps) {
-    if (step["verdict"] == "localized") {
-      EXPECT_LE(step["error_m"].get<double>(), 0.05);
+// --reported-floor-m and -deg (issue 19): the map's own error, added to what is reported after
+// every decision, so the poses and verdicts are those of the default floor.
+TEST_F(TrackCli, TheReportedFloorWidensTheCovarianceOnly) {
+  const std::vector<nlohmann::json> base = track("--prior 8.55,2.45,0.02");
+  const std::vector<nlohmann::json> rough =
+      track("--prior 8.55,2.45,0.02 --reported-floor-m 0.1 --reported-floor-deg 3");
+  ASSERT_EQ(rough.size(), base.size());
+  const double floor_m = LocalizerOptions{}.reported_floor_m;
+  const double floor_rad = LocalizerOptions{}.reported_floor_rad;
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    EXPECT_EQ(rough[k]["pose"], base[k]["pose"]) << k;
+    EXPECT_EQ(rough[k]["verdict"], base[k]["verdict"]) << k;
+    const nlohmann::json &wide = rough[k]["covariance"], &narrow = base[k]["covariance"];
+    for (int axis = 0; axis < 2; ++axis) {
+      EXPECT_NEAR(wide[axis][axis].get<double>() - narrow[axis][axis].get<double>(),
+                  0.1 * 0.1 - floor_m * floor_m, 1e-12)
+          << k;
     }
+    EXPECT_NEAR(wide[2][2].get<double>() - narrow[2][2].get<double>(),
+                std::pow(3.0 * std::numbers::pi / 180.0, 2) - floor_rad * floor_rad, 1e-12)
+        << k;
   }
-  // 3 m of driving: the truth is the heaviest place, its weight in the JSON.
-  const nlohmann::json& last = steps.back();
-  EXPECT_LE(last["error_m"].get<double>(), 0.05) << last.dump();
-  EXPECT_GT(last["alternatives"][0]["weight"].get<double>(), 0.5) << last.dump();
+}
+
+TEST_F(TrackCli, GloballyTheDriveFavoursTheTruthWithoutAWrongAnswer) {
+  // A 3 m front laser in a corridor of look-alikes: the drive's scans fused into one view;
+  // the same with every place searched in full (--light-place-weight 0) and with only the
+  // heaviest (1).
+  for (const char* light : {"", " --light-place-weight 0", " --light-place-weight 1"}) {
+    const std::vector<nlohmann::json> steps =
+        track(std::string("--global --every 2 --odometry-noise 0.02,1 --fuse-drive") + light);
+    ASSERT_EQ(steps.size(), 7u) << light;  // scans 0, 2, ..., 12
+    for (const nlohmann::json& step : steps) {
+      if (step["verdict"] == "localized") {
+        EXPECT_LE(step["error_m"].get<double>(), 0.05) << light;
+      }
+    }
+    // 3 m of driving: the truth is the heaviest place, its weight in the JSON.
+    const nlohmann::json& last = steps.back();
+    EXPECT_LE(last["error_m"].get<double>(), 0.05) << light << last.dump();
+    EXPECT_GT(last["alternatives"][0]["weight"].get<double>(), 0.5) << light << last.dump();
+  }
 }
 
 // From no prior in a corridor of look-alikes the answer is `ambiguous`, then the first place
@@ -325,6 +356,12 @@ TEST_F(TrackCli, BadInputIsOneErrorLine) {
                    {"x.gfs"});
   expect_cli_error(run_cli(dir, base + "--global --odometry-error 0.05"), {"--odometry-error"});
   expect_cli_error(run_cli(dir, base + "--global --entry-weight 0"), {"entry_weight"});
+  expect_cli_error(run_cli(dir, base + "--global --reported-floor-m -1"),
+                   {"--reported-floor-m", "-1"});
+  expect_cli_error(run_cli(dir, base + "--global --reported-floor-deg nan"),
+                   {"--reported-floor-deg", "nan"});
+  expect_cli_error(run_cli(dir, base + "--global --light-place-weight 2"),
+                   {"light_place_weight", "2"});
 }
 
 TEST_F(TrackCli, APlotShowsTheTrackAndTheWeights) {

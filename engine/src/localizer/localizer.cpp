@@ -74,6 +74,7 @@ const LocalizerOptions& checked(const LocalizerOptions& options) {
   require_non_negative(options.reported_floor_m, "reported_floor_m");
   require_non_negative(options.reported_floor_rad, "reported_floor_rad");
   require_non_negative(options.fused_window_error_m, "fused_window_error_m");
+  require_share(options.light_place_weight, "light_place_weight");
   require_share(options.turn_fit_ratio, "turn_fit_ratio");
   require_non_negative(options.odometry_turn_error_per_rad, "odometry_turn_error_per_rad");
   require_non_negative(options.kept_heading_sigmas, "kept_heading_sigmas");
@@ -327,8 +328,9 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
   std::vector<TrackedHypothesis> followed;
   for (const TrackedHypothesis& hypothesis : next.set.hypotheses) {
     std::vector<LookAlike> look_alikes;
-    std::optional<TrackedHypothesis> carried =
-        follow_one(hypothesis, moved, next.travelled_m, observation, &look_alikes);
+    const bool light = hypothesis.weight < options_.light_place_weight;
+    std::optional<TrackedHypothesis> carried = follow_one(
+        hypothesis, moved, next.travelled_m, observation, light ? nullptr : &look_alikes, !light);
     if (!carried) continue;
     // A place carried so far that its window spans look-alikes splits into them: the weights,
     // not this one scan, will say which it is; the odometry's prior gives each its start.
@@ -355,7 +357,8 @@ std::vector<TrackedHypothesis> Localizer::follow(const LocalizerState& next, con
 std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothesis,
                                                        const Pose2& moved, double travelled_m,
                                                        const Observation& observation,
-                                                       std::vector<LookAlike>* look_alikes) const {
+                                                       std::vector<LookAlike>* look_alikes,
+                                                       bool second_look) const {
   hypothesis.pose = compose(hypothesis.pose, moved);
   hypothesis.driven_m += travelled_m;
   if (!on_map(hypothesis.pose)) return std::nullopt;
@@ -372,8 +375,8 @@ std::optional<TrackedHypothesis> Localizer::follow_one(TrackedHypothesis hypothe
   const SearchWindow global = estimator_.global_window(observation);
   SearchWindow window = window_around(hypothesis, global);
   Estimate e = search_window(observation, window, covariance, look_alikes);
-  if (e.on_window_edge && hypothesis.confirmed) {  // the best may lie beyond (a slip): look
-                                                   // once more, twice as wide
+  if (e.on_window_edge && hypothesis.confirmed && second_look) {
+    // The best may lie beyond (a slip): look once more, twice as wide.
     window.half_xy =
         std::min(2.0 * window.half_xy, std::max(options_.max_half_xy_m, window.half_xy));
     window.half_theta = std::min(2.0 * window.half_theta, max_window_turn());

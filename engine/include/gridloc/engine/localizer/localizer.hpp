@@ -158,6 +158,11 @@ struct LocalizerOptions {
   /// The error of a window's winner that its score surface does not see (m, 1 sigma; the
   /// same 2 cm as reported_floor_m), added to its covariance in that fusion.
   double fused_window_error_m = 0.02;
+  /// A place holding less than this share of the weights is re-scored in its window alone:
+  /// no look-alikes split off it, no second look twice as wide when its best lies on the
+  /// window's edge (issue 34: with several places tracked, an update's time stays bounded).
+  /// 0: every place gets both.
+  double light_place_weight = 0.3;
   /// How each place's observations weigh, and the share `localized` needs.
   HypothesisWeightOptions weights;
   /// A `localized` answer disagreeing with the last one and the odometry is not localized.
@@ -304,9 +309,12 @@ class Localizer {
   /// re-scored in its window; nullopt when the carried pose leaves the map.
   /// With `look_alikes`, a window wider than wide_window_m or wide_window_rad also gives
   /// the other places in it scoring split_ratio of its best (on the coarse copy).
+  /// With `second_look`, a confirmed place whose best lies on the window's edge is looked
+  /// for once more, twice as wide.
   std::optional<TrackedHypothesis> follow_one(TrackedHypothesis hypothesis, const Pose2& moved,
                                               double travelled_m, const Observation& observation,
-                                              std::vector<LookAlike>* look_alikes) const;
+                                              std::vector<LookAlike>* look_alikes,
+                                              bool second_look = true) const;
   /// Starts a re-search when the track is lost (or ambiguous long enough), runs its next
   /// slices (all of them at the first observation) and, once it is done, lets its places
   /// join `tracked`. Returns the finished search's estimate.
