@@ -126,8 +126,8 @@ TEST_F(TrackCli, TheReportedFloorWidensTheCovarianceOnly) {
 
 TEST_F(TrackCli, GloballyTheDriveFavoursTheTruthWithoutAWrongAnswer) {
   // A 3 m front laser in a corridor of look-alikes: the drive's scans fused into one view;
-  // the same with every place searched in full (--light-place-weight 0) and with only the
-  // heaviest (1).
+  // the same with every place searched in full (--light-place-weight 0) and with every place
+  // of an ambiguous set searched in its window alone (1).
   for (const char* light : {"", " --light-place-weight 0", " --light-place-weight 1"}) {
     const std::vector<nlohmann::json> steps =
         track(std::string("--global --every 2 --odometry-noise 0.02,1 --fuse-drive") + light);
