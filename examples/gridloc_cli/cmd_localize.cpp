@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "gridloc/engine/correlation/coarse_to_fine.hpp"
 #include "gridloc/engine/correlation/estimator.hpp"
+#include "gridloc/engine/correlation/scan_checks.hpp"
 #include "gridloc/engine/icp/estimator.hpp"
 #include "gridloc/engine/sectors/estimator.hpp"
 #include "gridloc/engine/sectors/sector_file.hpp"
@@ -40,7 +41,8 @@ struct LocalizeArgs {
   double through_wall_ratio = CoarseToFineOptions{}.through_wall_ratio;  ///< --through-wall-ratio
   double reported_floor_m = CoarseToFineOptions{}.reported_floor_m;      ///< --reported-floor-m
   double reported_floor_deg = rad2deg(CoarseToFineOptions{}.reported_floor_rad);  ///< ...-deg
-  bool json = true;  // --json: JSON is the only output, the flag is accepted
+  bool no_edge_check = false;  ///< --no-edge-check: ScanChecks::edge_not_localized off
+  bool json = true;            // --json: JSON is the only output, the flag is accepted
 };
 
 /// The estimator kind of --estimator, checked against --repeat, --scan and --prior;
@@ -236,7 +238,13 @@ void run(const LocalizeArgs& args) {
       estimate_repeatedly(estimator, localization.observation, localization.window, args.repeat);
   // A laser scan's windowed answer reports the floor its whole-map answer does (coarse-to-fine
   // adds it itself): a real map's error the score surface does not see.
+  // ... and gets its checks (coarse-to-fine checks the walls itself; its windows' edges are
+  // the coarse copy's).
   if (localization.observation.scan && kind == EstimatorKind::Correlation && coarse == 0.0) {
+    ScanChecks checks;
+    checks.through_wall_ratio = args.through_wall_ratio;
+    checks.edge_not_localized = !args.no_edge_check;
+    check_scan_answer(result.estimate, correlation->map(), *localization.observation.scan, checks);
     add_reported_floor(result.estimate, args.reported_floor_m, deg2rad(args.reported_floor_deg));
   }
   std::cout << localize_json(result, estimator, localization, precompute_ms, args.repeat, search,
@@ -275,10 +283,13 @@ void add_localize(CLI::App& app) {
                   "the distinct places scoring --second-peak-floor of it)")
       ->capture_default_str();
   cmd->add_option("--through-wall-ratio", args->through_wall_ratio,
-                  "coarse-to-fine: an answer whose returns cross a wall of the map this share "
-                  "of its fit or more is not localized (JSON through_walls: that share); 0: no "
-                  "check")
+                  "with --scan (the correlation search): an answer whose returns cross a wall "
+                  "of the map this share of its fit or more is not localized (JSON "
+                  "through_walls: that share); 0: no check")
       ->capture_default_str();
+  cmd->add_flag("--no-edge-check", args->no_edge_check,
+                "with --scan and --prior: an answer whose winner lies on the window's edge "
+                "(JSON on_window_edge) stays localized (by default it is not localized)");
   cmd->add_option("--reported-floor-m", args->reported_floor_m,
                   "with --scan (the correlation search): added to the reported position "
                   "standard deviations in quadrature (a real map's error; 0 with "

@@ -144,5 +144,35 @@ TEST(CoarseCli, TheReportedFloorWidensTheStandardDeviationsOnly) {
   }
 }
 
+// A scan's windowed answer gets the checks a whole-map one does (issue 19): a winner on the
+// window's edge (the truth 0.35 m from the prior, the window 0.3 m) keeps its pose but is not
+// localized, unless --no-edge-check; the share of returns through walls is reported.
+TEST(CoarseCli, AWindowedScanAnswerOnTheWindowsEdgeIsNotLocalized) {
+  TempDir dir;
+  const std::string scan = simulated_scan(dir, 180);
+  const std::string base = "localize --map " + quote(kMap) + " --scan " + quote(scan) +
+                           " --max-range 8 --prior 4.55,2.1,0.7 --window-theta 0.2";
+  const auto run = [&](const std::string& extra) {
+    const CliRun r = run_cli(
+        dir,
+        base + (extra.find("--window-xy") == std::string::npos ? " --window-xy 0.3" : "") + extra);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.status == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+  };
+  const nlohmann::json checked = run("");
+  const nlohmann::json unchecked = run(" --no-edge-check");
+  EXPECT_TRUE(checked.value("on_window_edge", false)) << checked.dump();
+  EXPECT_EQ(checked.value("verdict", ""), "not localized");
+  EXPECT_EQ(unchecked.value("verdict", ""), "localized");
+  EXPECT_EQ(checked["pose"], unchecked["pose"]);
+  EXPECT_LT(checked.value("through_walls", 1.0), 0.05);
+  // Inside the window the answer is localized either way.
+  const nlohmann::json inside = run(" --window-xy 0.6");
+  expect_near_truth(inside);
+  EXPECT_FALSE(inside.value("on_window_edge", true));
+  EXPECT_EQ(inside.value("verdict", ""), "localized");
+  expect_cli_error(run_cli(dir, base + " --through-wall-ratio -1"), {"--through-wall-ratio", "-1"});
+}
+
 }  // namespace
 }  // namespace gridloc

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "confidence.hpp"
+#include "gridloc/engine/correlation/scan_checks.hpp"
 #include "gridloc/grids/error.hpp"
 #include "gridloc/grids/option_checks.hpp"
-#include "gridloc/sensors/through_walls.hpp"
 
 namespace gridloc {
 namespace {
@@ -103,16 +103,13 @@ Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& option
   return e;
 }
 
-/// Records the share of `scan`'s returns that cross a wall of `map` at the answer, and turns
-/// a `localized` answer `not localized` when it reaches through_wall_ratio of its fit.
-void check_walls(Estimate& e, const OccupancyMap& map, const RangeScan& scan,
-                 const CoarseToFineOptions& options) {
-  if (options.through_wall_ratio <= 0.0) return;
-  e.through_walls = through_walls(map, scan, e.pose, options.through_wall_margin_m).share();
-  if (e.verdict == Verdict::Localized &&
-      e.through_walls >= options.through_wall_ratio * e.normalized_score) {
-    e.verdict = Verdict::NotLocalized;
-  }
+/// The through-walls check of `options` (its window is the caller's: no edge rule).
+ScanChecks scan_checks(const CoarseToFineOptions& options) {
+  ScanChecks checks;
+  checks.through_wall_ratio = options.through_wall_ratio;
+  checks.through_wall_margin_m = options.through_wall_margin_m;
+  checks.edge_not_localized = false;
+  return checks;
 }
 
 /// `pose` moved onto the nearest cell centre of `map` when it lies past the map's edge (the
@@ -183,7 +180,8 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
   Estimate e = best_of(std::move(refined), fine_->options(), options_);
-  if (observation.scan) check_walls(e, fine_->map(), *observation.scan, options_);
+  if (observation.scan)
+    check_scan_answer(e, fine_->map(), *observation.scan, scan_checks(options_));
   add_reported_floor(e, options_.reported_floor_m, options_.reported_floor_rad);
   e.on_window_edge = rough.on_window_edge;
   e.stats = stats;
