@@ -4,7 +4,8 @@
 usage: relations_table.py OUT_DIR NAME
 Fields: pairs, failures (beyond 0.2 m or 5 deg), the mean errors over the pairs that
 succeed, failures per overlap band, failures among the pairs overlapping >= 0.5, the answers
-a consumer would use (localized; converged for icp) that fail, the share of those answers
+a consumer would use (localized; converged for icp) that fail (and of them those outside
+their 2-sigma ellipse), the share of those answers
 within their 2-sigma ellipse, the median ms per pair and the peak memory (MB) of the runs.
 """
 import csv
@@ -40,6 +41,8 @@ for log in ("intel", "fr079"):
             "by_overlap": bands,
             "overlapping": [len(overlapping), sum(r["failed"] == "1" for r in overlapping)],
             "used": len(used), "used_failures": sum(r["failed"] == "1" for r in used),
+            "used_failures_outside_2sigma": sum(r["failed"] == "1" and r["within_2sigma"] == "0"
+                                                for r in used),
             "within_2sigma": round(sum(r["within_2sigma"] == "1" for r in used) / max(1, len(used)), 3),
             "median_ms": round(statistics.median(ms), 2),
             "peak_mb": round(max(kb) / 1024.0, 1)}))

@@ -37,6 +37,7 @@ struct RelationsArgs {
     s.strategy = "exhaustive";
     s.covariance_cells = defaults.covariance_cells;
     s.covariance_temperature = defaults.covariance_temperature;
+    s.covariance_peaks = defaults.covariance_spans_peaks;
     return s;
   }();
   bool json = false;

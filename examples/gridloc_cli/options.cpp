@@ -162,6 +162,11 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "a scan's refined pose reports this share of the lattice's quantization "
                   "variance (1 = all of it, as before); no verdict changes with it")
       ->capture_default_str();
+  cmd->add_option("--covariance-peaks", covariance_peaks,
+                  "true: the reported covariance also spans the window's other peaks "
+                  "(alternatives) weighted at its temperature, as a corridor's doors make them; "
+                  "no verdict changes with it (default true for relations)")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -201,6 +206,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.covariance_temperature = covariance_temperature;
   options.ring_covariance_temperature = ring_covariance_temperature;
   options.scan_quantization_share = scan_quantization_share;
+  options.covariance_spans_peaks = covariance_peaks;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   require_flag(free_samples >= 1 && free_samples <= 1000, "--free-samples", free_samples,
                "must lie in [1, 1000]");

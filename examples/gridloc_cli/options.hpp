@@ -49,6 +49,7 @@ struct SearchArgs {
   double covariance_temperature = CorrelationOptions{}.covariance_temperature;
   double ring_covariance_temperature = CorrelationOptions{}.ring_covariance_temperature;
   double scan_quantization_share = CorrelationOptions{}.scan_quantization_share;
+  bool covariance_peaks = CorrelationOptions{}.covariance_spans_peaks;  ///< --covariance-peaks
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and

@@ -146,6 +146,49 @@ TEST(RelationCorridor, AnAnswerSlidAlongTheCorridorSaysSo) {
   }
 }
 
+/// The same corridor with its walls broken every 0.35 m (0.25 m of wall, 0.1 m of door):
+/// poses a period apart fit about alike, as separate peaks.
+std::vector<WallSegment> corridor_with_doors() {
+  std::vector<WallSegment> walls;
+  for (double x = -20.0; x < 20.0; x += 0.35) {
+    walls.push_back({{x, -1}, {x + 0.25, -1}});
+    walls.push_back({{x, 1}, {x + 0.25, 1}});
+  }
+  return walls;
+}
+
+TEST(RelationCorridor, TheCovarianceSpansTheCorridorsOtherPeaks) {
+  // The prior a period off along the corridor: the window holds peaks a period apart, and a
+  // covariance read around the winner alone cannot cover a period's error.
+  const Pose2 first{0.0, 0.1, 0.0}, second{0.5, 0.1, 0.0};
+  const auto scan_at = [](const Pose2& pose) {
+    return simulate_segment_scan(corridor_with_doors(), pose, 181, -0.5 * std::numbers::pi,
+                                 std::numbers::pi / 180.0, 20.0);
+  };
+  const Pose2 truth = relative_pose(first, second);
+  RelationEvalOptions options;
+  options.matcher = EstimatorKind::Correlation;
+  ASSERT_TRUE(options.correlation.covariance_spans_peaks);  // the relations protocol's default
+  RelationEvalOptions winner_only = options;
+  winner_only.correlation.covariance_spans_peaks = false;
+  const auto sigma_along = [](const PairMatch& m) { return std::sqrt(m.covariance(0, 0)); };
+  for (double slide : {-0.35, 0.35}) {
+    const Pose2 prior{truth.x + slide, truth.y + 0.02, truth.theta};
+    const PairMatch spanning = match_relation_pair(scan_at(first), scan_at(second), prior, options);
+    const PairMatch narrow =
+        match_relation_pair(scan_at(first), scan_at(second), prior, winner_only);
+    EXPECT_EQ(spanning.pose.x, narrow.pose.x) << slide;  // reported covariance only
+    EXPECT_EQ(spanning.pose.y, narrow.pose.y) << slide;
+    EXPECT_EQ(spanning.verdict, narrow.verdict) << slide;
+    EXPECT_GT(sigma_along(spanning), 2.0 * sigma_along(narrow)) << slide;
+    EXPECT_GT(2.0 * sigma_along(spanning), 0.35 / 2) << slide;  // half a period, at least
+    const double error = std::abs(spanning.pose.x - truth.x);
+    EXPECT_TRUE(spanning.verdict != Verdict::Localized || error <= 2.0 * sigma_along(spanning))
+        << "slide " << slide << ": " << error << " m off along, sigma " << sigma_along(spanning);
+    EXPECT_LT(std::sqrt(spanning.covariance(1, 1)), 0.1) << slide;  // across: still pinned
+  }
+}
+
 TEST_F(RelationTrials, IcpFromThePriorTooKeepsExactRelations) {
   RelationEvalOptions o;
   o.matcher = EstimatorKind::CorrelationIcp;

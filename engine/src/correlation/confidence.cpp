@@ -109,6 +109,22 @@ Eigen::Matrix3d peak_covariance(const LatticePose& best, const Lattice& lattice,
   return peak_covariances(best, lattice, global, placed_at, k, yaw, {temperature}).front();
 }
 
+Eigen::Matrix3d spanning_peaks(const Eigen::Matrix3d& around_winner,
+                               const std::vector<Hypothesis>& peaks, double temperature) {
+  if (peaks.size() < 2 || !(temperature > 0.0)) return around_winner;
+  const Hypothesis& winner = peaks.front();
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  double total = 1.0;  // the winner's own weight
+  for (std::size_t k = 1; k < peaks.size(); ++k) {
+    const double weight = std::exp((peaks[k].score - winner.score) / temperature);
+    const Eigen::Vector3d offset(peaks[k].pose.x - winner.pose.x, peaks[k].pose.y - winner.pose.y,
+                                 normalize_angle(peaks[k].pose.theta - winner.pose.theta));
+    spread += weight * offset * offset.transpose();
+    total += weight;
+  }
+  return around_winner + spread / total;
+}
+
 double position_spread(const Eigen::Matrix3d& covariance) {
   return std::sqrt(std::max(0.0, covariance(0, 0) + covariance(1, 1)));
 }

@@ -35,6 +35,11 @@ std::vector<Eigen::Matrix3d> peak_covariances(const LatticePose& best, const Lat
                                               const std::function<PlacedLocalGrid(int)>& placed_at,
                                               int k, double yaw,
                                               const std::vector<double>& temperatures);
+/// `around_winner` (the covariance read around peaks.front(), the winner) widened to the
+/// second moment about the winner of a mixture: every peak with that spread and the weight
+/// exp((score - best) / temperature) (CorrelationOptions::covariance_spans_peaks).
+Eigen::Matrix3d spanning_peaks(const Eigen::Matrix3d& around_winner,
+                               const std::vector<Hypothesis>& peaks, double temperature);
 /// sqrt(var x + var y) of a pose covariance (m): ConfidenceParts::spread_m.
 double position_spread(const Eigen::Matrix3d& covariance);
 

@@ -400,6 +400,10 @@ Estimate CorrelationEstimator::conclude(PreparedSearch& prepared, const Observat
     e.confidence_parts.spread_m = position_spread(c[0]);
     e.covariance = c[1];
     share_quantization(e.covariance, observation, lattice, options_);
+    if (options_.covariance_spans_peaks) {
+      e.covariance =
+          spanning_peaks(e.covariance, e.alternatives, reported_temperature(observation, options_));
+    }
   }
   judge(e, peaks.size() > 1 || e.second_below_floor, options_.verdict);
   fill_stats(e, search.result, prepared.level_count, prepared.start);

@@ -148,6 +148,7 @@ CorrelationOptions exhaustive_search() {
   options.strategy = SearchStrategy::Exhaustive;
   options.covariance_cells = 5;
   options.covariance_temperature = 10.0;
+  options.covariance_spans_peaks = true;
   return options;
 }
 

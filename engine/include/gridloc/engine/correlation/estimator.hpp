@@ -105,6 +105,13 @@ struct CorrelationOptions {
   /// covariance only (the verdict reads ConfidenceParts::spread_m); a sonar ring keeps all of
   /// it whatever this is.
   double scan_quantization_share = 1.0;
+  /// The reported covariance also spans the window's other peaks (Estimate::alternatives):
+  /// its second moment about the winner when each peak carries the winner's spread and the
+  /// weight exp((score - best) / T) at the reported temperature. Read around the winner alone
+  /// it misses a corridor whose doors make separate peaks along it (issue 30: one-scan maps'
+  /// answers slid 0.35-0.63 m along a corridor with a 2-sigma ellipse of 0.2-0.26 m). Reported
+  /// covariance only; on for the relations protocol (exhaustive_search()), off elsewhere.
+  bool covariance_spans_peaks = false;
   VerdictOptions verdict;
   double distinct_xy = 0.3;                ///< poses farther apart than this (m) ...
   double distinct_theta = 0.261799387799;  ///< ... or this (rad, 15 deg) are distinct

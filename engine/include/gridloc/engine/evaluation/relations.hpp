@@ -25,7 +25,9 @@ namespace gridloc {
 /// corridor's ridge then shows: over Intel's 106 pairs (5 seeds) and freiburg-079's 1141 (2
 /// seeds), correlation + ICP, the 2-sigma ellipse covers 95 % and 94 % of the `localized`
 /// answers (87 % and 58 % with 3 cells at temperature 1) and 2 fr079 answers fail while
-/// `localized`, against 9 (issue 30).
+/// `localized`, against 9 (issue 30). The covariance also spans the window's other peaks
+/// (CorrelationOptions::covariance_spans_peaks): Intel's `localized` failures outside their
+/// ellipse 21 -> 13 (correlation) and 16 -> 12 (correlation + ICP), fr079's the same.
 CorrelationOptions exhaustive_search();
 
 struct RelationEvalOptions {
