@@ -123,6 +123,8 @@ Localization prepare_localization(const LocalizationArgs& args,
   options.limits = limits();
   // A scan needs no ring: the padding covers its max range instead.
   options.reach_m = localization.observation.scan ? args.max_range : 0.0;
+  // A window needs the bound pyramid only as deep as it is wide: less to precompute.
+  if (!args.whole_map) options.max_bound_depth = window_bound_depth(localization.window);
   if (tune) tune(options);
   if (localization.observation.scan) {
     localization.estimator = std::make_unique<CorrelationEstimator>(std::move(map), options);

@@ -166,6 +166,33 @@ TEST(CoarseToFine, AShallowFinePyramidGivesTheSameAnswers) {
   }
 }
 
+// A windowed search on a pyramid only as deep as its window needs (what `localize --prior`
+// builds, issue 17) gives the same answer, bit for bit, as on one deep enough for the map.
+TEST(CoarseToFine, AWindowsOwnPyramidDepthGivesTheSameWindowedAnswers) {
+  SearchWindow half_metre;
+  half_metre.half_xy = 0.5;
+  half_metre.step_xy = 0.05;
+  EXPECT_EQ(window_bound_depth(half_metre), 6);  // 21 cells: 2^5 >= 21, plus one
+  const auto deep = laser_estimator("apartment_small");
+  Rng rng(23);
+  for (int trial = 0; trial < 6; ++trial) {
+    const auto [truth, observation, whole] = trial_on(*deep, rng);
+    SearchWindow window = half_metre;
+    window.half_xy = 0.3 + 0.35 * trial;  // 0.3 to 2.05 m
+    window.half_theta = 0.3;
+    window.step_theta = 0.02;
+    window.center = {truth.x + 0.1, truth.y - 0.1, truth.theta + 0.05};
+    const int depth = window_bound_depth(window);
+    const auto shallow = laser_estimator("apartment_small", true, depth);
+    const std::string what = "trial " + std::to_string(trial) + ", depth " + std::to_string(depth);
+    const Estimate a = deep->estimate(observation, window);
+    const Estimate b = shallow->estimate(observation, window);
+    expect_same_answer(a, b, what);
+    EXPECT_TRUE(b.stats.proven_optimal) << what;
+    EXPECT_EQ(a.stats.poses_scored, b.stats.poses_scored) << what;  // the same search
+  }
+}
+
 // The answer is ambiguous exactly when a far refined place scores ambiguity_ratio of the best.
 TEST(CoarseToFine, AFarPlaceAtTheAmbiguityRatioMakesTheAnswerAmbiguous) {
   const auto fine = laser_estimator("apartment_small");

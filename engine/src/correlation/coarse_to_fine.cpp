@@ -155,11 +155,10 @@ void validate(const CoarseToFineOptions& options, double fine_resolution) {
 
 int refinement_bound_depth(const CoarseToFineOptions& options, double fine_resolution) {
   validate(options, fine_resolution);
-  const double half_cells = std::ceil(options.half_xy_cells * options.resolution / fine_resolution);
-  const double cells = 2.0 * half_cells + 1.0;
-  int depth = 0;
-  while (depth < 30 && std::ldexp(1.0, depth) < cells) ++depth;
-  return depth + 1;  // heading intervals widen blocks up to twice their side
+  SearchWindow window;
+  window.step_xy = fine_resolution;
+  window.half_xy = options.half_xy_cells * options.resolution;
+  return window_bound_depth(window);
 }
 
 CoarseToFineEstimator::CoarseToFineEstimator(std::shared_ptr<const CorrelationEstimator> fine,

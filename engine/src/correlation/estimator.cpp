@@ -284,6 +284,14 @@ void fill_stats(Estimate& e, const SearchResult& result, int levels,
 
 }  // namespace
 
+int window_bound_depth(const SearchWindow& window) {
+  const double half_cells = std::ceil(window.half_xy / window.step_xy);
+  const double cells = 2.0 * half_cells + 1.0;
+  int depth = 0;
+  while (depth < 30 && std::ldexp(1.0, depth) < cells) ++depth;
+  return depth + 1;  // heading intervals widen blocks up to twice their side
+}
+
 std::string to_string(SearchStrategy strategy) {
   switch (strategy) {
     case SearchStrategy::BranchAndBound:

@@ -121,6 +121,12 @@ struct CorrelationOptions {
   ResourceLimits limits;
 };
 
+/// The bound pyramid depth a search of `window` (at its step_xy) needs: its top blocks cover
+/// the window's translations, plus one level (heading intervals widen blocks up to twice
+/// their side). A CorrelationEstimator built with this as max_bound_depth answers that
+/// window exactly as a deeper one does, and precomputes less (issue 17). At least 1.
+int window_bound_depth(const SearchWindow& window);
+
 /// Every lattice pose of a window scored (the exhaustive search's volume): for heatmaps,
 /// notebooks and the covariance of the peak. Cell (x, y) of the volume is map grid cell
 /// (ix0 + x, iy0 + y) of `geometry` (the finest grid, unpadded); heading index t is heading
