@@ -41,6 +41,15 @@ std::vector<Pose2> drive_out_of_room_b() {
   return path;
 }
 
+/// East through room B, south out of its door, east along the corridor.
+std::vector<Pose2> through_room_b_to_the_corridor() {
+  std::vector<Pose2> path;
+  for (double x = 8.0; x < 10.0; x += 0.1) path.push_back({x, 5.5, 0.0});
+  for (double y = 5.5; y > 3.0; y -= 0.1) path.push_back({10.0, y, -0.5 * std::numbers::pi});
+  for (double x = 10.0; x < 14.0; x += 0.1) path.push_back({x, 3.0, 0.0});
+  return path;
+}
+
 TEST(Tracking, TwoIdenticalRoomsResolveAfterADriveWithoutAWrongAnswer) {
   const OccupancyMap map = two_rooms();
   Localizer localizer(map, laser(), laser_options());
@@ -67,10 +76,7 @@ TEST(Tracking, TwoIdenticalRoomsResolveAfterADriveWithoutAWrongAnswer) {
 TEST(Tracking, ASeededSlipIsNotLocalizedUntilTheTrackHasHeld) {
   const OccupancyMap map = two_rooms();
   Localizer localizer(map, laser(), laser_options());
-  std::vector<Pose2> path;  // east through room B, south out of its door, east along the corridor
-  for (double x = 8.0; x < 10.0; x += 0.1) path.push_back({x, 5.5, 0.0});
-  for (double y = 5.5; y > 3.0; y -= 0.1) path.push_back({10.0, y, -0.5 * std::numbers::pi});
-  for (double x = 10.0; x < 14.0; x += 0.1) path.push_back({x, 3.0, 0.0});
+  const std::vector<Pose2> path = through_room_b_to_the_corridor();
   OdometryNoise noise;
   noise.frac = 0.0;
   noise.rad_per_m = 0.0;
@@ -104,6 +110,42 @@ TEST(Tracking, ASeededSlipIsNotLocalizedUntilTheTrackHasHeld) {
   EXPECT_GE(rejected, 2);
   EXPECT_GE(localized, static_cast<int>(path.size()) * 2 / 3);
   EXPECT_TRUE(right(localizer.estimate(), path.back()));
+}
+
+// With its whole-map searches on the coarse copy, a laser tracker builds its own grids only
+// as deep as its widest window (max_half_xy_m) needs (issue 17: less precomputation and
+// memory); from no prior, through slips and the re-searches they start, every answer is the
+// one a tracker with grids as deep as the map gives.
+TEST(Tracking, TheTrackersGridsOnlyAsDeepAsItsWidestWindowChangeNoAnswer) {
+  const OccupancyMap map = two_rooms();
+  LocalizerOptions deep_options = laser_options();
+  deep_options.correlation.max_bound_depth = 31;  // as deep as the map
+  Localizer shallow(map, laser(), laser_options()), deep(map, laser(), deep_options);
+  SearchWindow widest;
+  widest.half_xy = laser_options().max_half_xy_m;
+  widest.step_xy = 0.05;
+  EXPECT_EQ(shallow.estimator().options().max_bound_depth, window_bound_depth(widest));
+  EXPECT_EQ(deep.estimator().options().max_bound_depth, 31);
+  LocalizerOptions exact_first = laser_options();
+  exact_first.research.coarse_first_search = false;  // a whole-map search on its own grids
+  EXPECT_EQ(Localizer(map, laser(), exact_first).estimator().options().max_bound_depth, 0);
+  const std::vector<Pose2> path = through_room_b_to_the_corridor();
+  OdometryNoise noise;
+  noise.slip_every_m = 2.0;
+  Rng rng(7);
+  const std::vector<Pose2> odometry = drifting_odometry(path, noise, rng);
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    for (Localizer* localizer : {&shallow, &deep}) {
+      localizer->add_odometry(odometry[k]);
+      localizer->add_observation(double(k), scan_at(map, path[k]));
+    }
+    const Estimate a = shallow.estimate(), b = deep.estimate();
+    EXPECT_EQ(a.verdict, b.verdict) << k;
+    EXPECT_EQ(a.pose.x, b.pose.x) << k;
+    EXPECT_EQ(a.pose.y, b.pose.y) << k;
+    EXPECT_EQ(a.pose.theta, b.pose.theta) << k;
+    EXPECT_EQ(a.alternatives.size(), b.alternatives.size()) << k;
+  }
 }
 
 // LocalizerOptions::localized_fit_ratio: a scan half hidden by people fits the tracked place

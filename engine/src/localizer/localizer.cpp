@@ -120,6 +120,16 @@ CorrelationOptions with_laser_reach(const LocalizerOptions& options, const Laser
   correlation.reach_m =
       std::max(correlation.reach_m, laser.max_range + std::hypot(laser.mount.x, laser.mount.y) +
                                         options.drive.max_distance_m);
+  // With every whole-map search on the coarse copy, the tracker's own grids serve windows of
+  // at most max_half_xy_m: a bound pyramid that deep answers them as a deeper one does.
+  const bool coarse_searches =
+      options.research.resolution > correlation.resolution && options.research.coarse_first_search;
+  if (coarse_searches && correlation.max_bound_depth == 0) {
+    SearchWindow widest;
+    widest.half_xy = options.max_half_xy_m;
+    widest.step_xy = correlation.resolution;
+    correlation.max_bound_depth = window_bound_depth(widest);
+  }
   return correlation;
 }
 
@@ -175,6 +185,7 @@ Localizer::Localizer(OccupancyMap map, LaserSensor laser, LocalizerOptions optio
   if (options_.research.resolution > estimator_.options().resolution) {
     CorrelationOptions coarse = estimator_.options();
     coarse.resolution = options_.research.resolution;
+    coarse.max_bound_depth = options_.correlation.max_bound_depth;  // it searches the whole map
     // Its searches' places are read from the smallest share of the best any reader keeps
     // (the seeds, drop_ratio; a wide window's look-alikes, split_ratio): branch and bound
     // finds every one above it in its one search, where a floor of 0 searched again for each.
