@@ -159,6 +159,21 @@ int bound_depth_for(const Lattice& lattice) {
   return depth;
 }
 
+namespace {
+
+/// Runs `make` once, the first time any thread gets here with `made` false: a made grid
+/// costs one atomic load. `make` may throw; `made` then stays false.
+template <typename Make>
+void make_once(std::atomic<bool>& made, std::mutex& making, Make&& make) {
+  if (made.load(std::memory_order_acquire)) return;
+  const std::lock_guard<std::mutex> lock(making);
+  if (made.load(std::memory_order_relaxed)) return;
+  make();
+  made.store(true, std::memory_order_release);
+}
+
+}  // namespace
+
 HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
     : lattice_(lattice),
       level_(finest),
@@ -177,7 +192,7 @@ HeadingGrids::HeadingGrids(const Lattice& lattice, const SearchLevel& finest)
 
 const PlacedLocalGrid& HeadingGrids::placed(int it) const {
   Entry& e = entries_[static_cast<std::size_t>(it)];
-  std::call_once(e.placed_once, [&] {
+  make_once(e.placed_made, e.making, [&] {
     if (level_.points != nullptr) {  // make_local's grid, without the detour (tested equal)
       e.placed = place_points(*level_.points, lattice_.theta(it), *level_.global);
       return;
@@ -196,7 +211,7 @@ const PlacedLocalGrid& HeadingGrids::placed(int it) const {
 
 const HeadingGrids::PointCells& HeadingGrids::point_cells(int it) const {
   Entry& e = entries_[static_cast<std::size_t>(it)];
-  std::call_once(e.cells_once, [&] {
+  make_once(e.cells_made, e.making, [&] {
     const ScanPoints& p = *level_.points;
     const double theta = lattice_.theta(it);
     const double c = std::cos(theta), s = std::sin(theta);

@@ -4,6 +4,7 @@
 /// above with max / min pooled global grids and pruned against the best pose found so far.
 /// Returns what search_exhaustive returns, bit for bit, while scoring far fewer poses.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -174,8 +175,12 @@ class HeadingGrids {
   const ScanPoints* points() const { return level_.points; }
 
  private:
+  /// A heading's grids, each made once by the first thread that asks (double-checked: a
+  /// made grid costs one atomic load; std::call_once's glibc path ended every first call in a
+  /// futex system call, 97 of them a windowed search).
   struct Entry {
-    std::once_flag placed_once, cells_once;
+    std::atomic<bool> placed_made{false}, cells_made{false};
+    std::mutex making;
     PlacedLocalGrid placed;
     PointCells cells;
   };
