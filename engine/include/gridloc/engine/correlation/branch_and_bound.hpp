@@ -177,7 +177,7 @@ class HeadingGrids {
  private:
   /// A heading's grids, each made once by the first thread that asks (double-checked: a
   /// made grid costs one atomic load; std::call_once's glibc path ended every first call in a
-  /// futex system call, 97 of them a windowed search).
+  /// futex system call, 161 of them a windowed search on the apartment).
   struct Entry {
     std::atomic<bool> placed_made{false}, cells_made{false};
     std::mutex making;
