@@ -111,6 +111,7 @@ std::unique_ptr<Estimator> make_sector_estimator(
   // centimetres (kSectorRefinementResolution).
   CorrelationOptions fine = correlation->options();
   fine.resolution = kSectorRefinementResolution;
+  fine.max_bound_depth = 0;  // its windows are its own, not the --prior window's
   auto local = std::make_shared<const CorrelationEstimator>(
       rasterize_polygon_map(polygons, fine.resolution), fine);
   return std::make_unique<SectorCorrelationEstimator>(sectors, local);

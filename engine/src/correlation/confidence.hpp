@@ -37,7 +37,8 @@ std::vector<Eigen::Matrix3d> peak_covariances(const LatticePose& best, const Lat
                                               const std::vector<double>& temperatures);
 /// `around_winner` (the covariance read around peaks.front(), the winner) widened to the
 /// second moment about the winner of a mixture: every peak with that spread and the weight
-/// exp((score - best) / temperature) (CorrelationOptions::covariance_spans_peaks).
+/// exp((score - best) / temperature) (CorrelationOptions::covariance_spans_peaks). The
+/// offsets are from the winner's lattice pose (the refined pose lies within half a cell).
 Eigen::Matrix3d spanning_peaks(const Eigen::Matrix3d& around_winner,
                                const std::vector<Hypothesis>& peaks, double temperature);
 /// sqrt(var x + var y) of a pose covariance (m): ConfidenceParts::spread_m.
