@@ -74,8 +74,9 @@ struct CorrelationOptions {
   /// `confidence` is then optimistic (0 when it scored none).
   bool second_peak = true;
   /// The hypotheses after the winner are looked for only among poses scoring at least this
-  /// share of it (0: all), by every strategy; branch and bound then finds them in its one
-  /// search (BranchAndBoundOptions::keep_share; under a budget, one search each). Below it a second
+  /// share of it (0: all), by every strategy; branch and bound then finds a scan's in its one
+  /// search (BranchAndBoundOptions::keep_share; under a budget, one search each), and a sonar
+  /// ring's in one more search each (its flat scores kept most nodes). Below it a second
   /// peak changes no verdict (ambiguity needs VerdictOptions::ambiguity_ratio, 0.97) and little
   /// confidence: the distinctness is then computed with the floor as the second score, a lower
   /// bound (at 0.8 at least 0.952 of what the exact second peak would give), and
