@@ -120,15 +120,18 @@ std::vector<WallSegment> corridor() {
   return {{{-40, -1}, {40, -1}}, {{-40, 1}, {40, 1}}};
 }
 
+/// A 181-beam front laser (20 m) at `pose` among `walls`.
+RangeScan front_scan(const std::vector<WallSegment>& walls, const Pose2& pose) {
+  return simulate_segment_scan(walls, pose, 181, -0.5 * std::numbers::pi, std::numbers::pi / 180.0,
+                               20.0);
+}
+
 TEST(RelationCorridor, AnAnswerSlidAlongTheCorridorSaysSo) {
   // Two scans 0.5 m apart along the corridor; the prior off by 0.25 m along it. Any pose
   // along the corridor fits as well: the answer is either not `localized` or its 2-sigma
   // ellipse covers its error, and the ellipse lies along the corridor.
   const Pose2 first{0.0, 0.1, 0.0}, second{0.5, 0.1, 0.05};
-  const auto scan_at = [](const Pose2& pose) {
-    return simulate_segment_scan(corridor(), pose, 181, -0.5 * std::numbers::pi,
-                                 std::numbers::pi / 180.0, 20.0);
-  };
+  const auto scan_at = [](const Pose2& pose) { return front_scan(corridor(), pose); };
   const Pose2 truth = relative_pose(first, second);
   RelationEvalOptions options;
   options.matcher = EstimatorKind::Correlation;
@@ -161,10 +164,7 @@ TEST(RelationCorridor, TheCovarianceSpansTheCorridorsOtherPeaks) {
   // The prior a period off along the corridor: the window holds peaks a period apart, and a
   // covariance read around the winner alone cannot cover a period's error.
   const Pose2 first{0.0, 0.1, 0.0}, second{0.5, 0.1, 0.0};
-  const auto scan_at = [](const Pose2& pose) {
-    return simulate_segment_scan(corridor_with_doors(), pose, 181, -0.5 * std::numbers::pi,
-                                 std::numbers::pi / 180.0, 20.0);
-  };
+  const auto scan_at = [](const Pose2& pose) { return front_scan(corridor_with_doors(), pose); };
   const Pose2 truth = relative_pose(first, second);
   RelationEvalOptions options;
   options.matcher = EstimatorKind::Correlation;
