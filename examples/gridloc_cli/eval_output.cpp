@@ -64,7 +64,8 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
   if (!out) throw Error("--trials-out: cannot write " + path);
   out << "map,trial,local,global,success,wrong_prior,furniture,position_error_m,"
          "heading_error_deg,score,normalized_score,second_score,confidence,std_x,std_y,"
-         "std_theta,on_window_edge,agreement,rejected_sonars,estimator,verdict\n";
+         "std_theta,on_window_edge,agreement,rejected_sonars,estimator,rises_past_window_edge,"
+         "verdict\n";
   for (const TrialRecord& r : report.records) {
     const EvalConfiguration& c = options.configurations[r.configuration];
     const Estimate& e = r.estimate;
@@ -74,7 +75,8 @@ void write_trials(const std::string& path, const EvalReport& report, const EvalO
         << e.second_score << ',' << e.confidence << ',' << std::sqrt(e.covariance(0, 0)) << ','
         << std::sqrt(e.covariance(1, 1)) << ',' << std::sqrt(e.covariance(2, 2)) << ','
         << e.on_window_edge << ',' << e.agreement << ',' << r.rejected_sonars << ','
-        << to_string(c.estimator) << ',' << to_string(e.verdict) << '\n';
+        << to_string(c.estimator) << ',' << e.rises_past_window_edge << ',' << to_string(e.verdict)
+        << '\n';
   }
   if (!out) throw Error("--trials-out: writing " + path + " failed");
 }

@@ -41,6 +41,7 @@ nlohmann::json to_json(const Estimate& estimate) {
       {"ambiguous", estimate.ambiguous},
       {"verdict", to_string(estimate.verdict)},
       {"on_window_edge", estimate.on_window_edge},
+      {"rises_past_window_edge", estimate.rises_past_window_edge},
       {"alternatives", alternatives},
       {"covariance", covariance},  // x, y, theta (m^2, m rad, rad^2), world frame
       {"std",

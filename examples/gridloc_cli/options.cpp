@@ -167,6 +167,11 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "(alternatives) weighted at its temperature, as a corridor's doors make them; "
                   "no verdict changes with it (default true for relations)")
       ->capture_default_str();
+  cmd->add_option("--rising-edge-check", rising_edge_check,
+                  "true: an answer on the window's edge whose score still rises one step past "
+                  "it (JSON rises_past_window_edge: the truth is likely outside the window) is "
+                  "not localized; false: it keeps its verdict")
+      ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "
                 "confidence is then optimistic)");
@@ -207,6 +212,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.ring_covariance_temperature = ring_covariance_temperature;
   options.scan_quantization_share = scan_quantization_share;
   options.covariance_spans_peaks = covariance_peaks;
+  options.verdict.rising_edge_not_localized = rising_edge_check;
   // Checked whatever the model: a bad number is a mistake even where it is not used.
   require_flag(free_samples >= 1 && free_samples <= 1000, "--free-samples", free_samples,
                "must lie in [1, 1000]");

@@ -50,6 +50,7 @@ struct SearchArgs {
   double ring_covariance_temperature = CorrelationOptions{}.ring_covariance_temperature;
   double scan_quantization_share = CorrelationOptions{}.scan_quantization_share;
   bool covariance_peaks = CorrelationOptions{}.covariance_spans_peaks;  ///< --covariance-peaks
+  bool rising_edge_check = VerdictOptions{}.rising_edge_not_localized;  ///< --rising-edge-check
 
   /// Adds --strategy, --arc-rule, --arc-depth, --threads, --scan-model, --free-samples,
   /// --budget-ms, --heading-intervals, --no-second-peak, --hypotheses and

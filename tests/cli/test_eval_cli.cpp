@@ -122,12 +122,18 @@ TEST_F(Cli, EvalNoisyReportsCalibrationAndWritesTrials) {
   EXPECT_NE(header.find("success,wrong_prior,furniture"), std::string::npos) << header;
   EXPECT_NE(header.find("confidence"), std::string::npos) << header;
   EXPECT_EQ(header.substr(header.rfind(',') + 1), "verdict") << header;
+  EXPECT_NE(header.find(",rises_past_window_edge,verdict"), std::string::npos) << header;
   int lines = 0;
   while (std::getline(in, line)) {
     ++lines;
-    const std::string verdict = line.substr(line.rfind(',') + 1);
+    const std::size_t last = line.rfind(',');
+    const std::string verdict = line.substr(last + 1);
     EXPECT_TRUE(verdict == "localized" || verdict == "ambiguous" || verdict == "not localized")
         << line;
+    // Issue 19: a score rising past the window's edge is never `localized`.
+    const std::string rising = line.substr(last - 1, 1);
+    EXPECT_TRUE(rising == "0" || rising == "1") << line;
+    if (rising == "1") EXPECT_NE(verdict, "localized") << line;
   }
   EXPECT_EQ(lines, 12 * 4);  // every trial of the four configurations
 }

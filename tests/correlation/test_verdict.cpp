@@ -127,6 +127,45 @@ TEST(Verdict, AWrongMapGivesLowConfidence) {
   EXPECT_GE(not_localized, 8);
 }
 
+// Issue 19: a prior whose window leaves the truth out (1.2-2.4 window half sizes off in x)
+// finds a winner on the window's edge whose score still rises past it, and that answer is
+// never `localized` (without the rule some would be); a window holding the truth seldom
+// rises past its edge.
+TEST(Verdict, AScoreRisingPastTheWindowsEdgeIsNotLocalized) {
+  const OccupancyMap map = load_ros_map(test::map_path("room_l"));
+  CorrelationOptions without_rule;
+  without_rule.verdict.rising_edge_not_localized = false;
+  const CorrelationEstimator estimator(map, ring()), without(map, ring(), without_rule);
+  Rng rng(17);
+  int rising = 0, localized_without_rule = 0, rising_inside = 0;
+  const int trials = 20;
+  for (int i = 0; i < trials; ++i) {
+    const Pose2 truth = sample_free_pose(map, ring(), 0.3, rng);
+    const Observation observation{simulate_sonar(map, ring(), truth)};
+    SearchWindow outside;
+    outside.half_xy = 0.4;
+    const double off = outside.half_xy * rng.uniform(1.2, 2.4) * (i % 2 ? 1.0 : -1.0);
+    outside.center = {truth.x + off, truth.y, truth.theta};
+    SearchWindow inside = outside;  // the truth a cell inside the window's edge
+    inside.center.x = truth.x + std::copysign(outside.half_xy - 0.1, off);
+    try {
+      const Estimate e = estimator.estimate(observation, outside);
+      rising += e.rises_past_window_edge;
+      if (e.rises_past_window_edge) {
+        EXPECT_TRUE(e.on_window_edge) << i;
+        EXPECT_NE(e.verdict, Verdict::Localized) << i;
+        localized_without_rule +=
+            without.estimate(observation, outside).verdict == Verdict::Localized;
+      }
+      rising_inside += estimator.estimate(observation, inside).rises_past_window_edge;
+    } catch (const Error&) {  // the prior left the map: not a trial
+    }
+  }
+  EXPECT_GE(rising, trials / 2);
+  EXPECT_GE(localized_without_rule, 1);
+  EXPECT_LE(rising_inside, 2);
+}
+
 TEST(Calibration, FurnitureAddsOccupiedCellsAwayFromTheRobot) {
   const OccupancyMap map = load_ros_map(test::map_path("room_rect"));
   Rng rng(3);

@@ -183,6 +183,7 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
     check_scan_answer(e, fine_->map(), *observation.scan, scan_checks(options_));
   add_reported_floor(e, options_.reported_floor_m, options_.reported_floor_rad);
   e.on_window_edge = rough.on_window_edge;
+  e.rises_past_window_edge = rough.rises_past_window_edge;
   e.stats = stats;
   e.stats.levels = 2;
   e.stats.proven_optimal = false;  // the coarse copy chose the places looked at closely

@@ -151,9 +151,10 @@ void judge(Estimate& e, bool searched_second, const VerdictOptions& v) {
       e.ambiguous = true;
     }
   }
-  e.verdict = e.ambiguous                              ? Verdict::Ambiguous
-              : e.confidence >= v.localized_confidence ? Verdict::Localized
-                                                       : Verdict::NotLocalized;
+  const bool rising = v.rising_edge_not_localized && e.rises_past_window_edge;
+  e.verdict = e.ambiguous                                         ? Verdict::Ambiguous
+              : e.confidence >= v.localized_confidence && !rising ? Verdict::Localized
+                                                                  : Verdict::NotLocalized;
 }
 
 /// Estimate::agreement: the share of `ranges` that a noise-free simulation on `map` at

@@ -3,6 +3,7 @@
 #include "gridloc/engine/correlation/estimator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -119,22 +120,45 @@ void place_winner(Estimate& e, const WindowSearch& search, const GridGeometry& g
   }
 }
 
-/// Estimate::on_window_edge: `best` lies on an edge of the window as asked (not one where the
-/// map clipped it), so a better pose may lie beyond it.
-bool on_window_edge(const LatticePose& best, const Lattice& lattice, const SearchWindow& window,
-                    const GridGeometry& geometry, double res) {
+/// The sides of the window `best` lies on, as asked (not where the map clipped it): -1 the
+/// low edge, +1 the high edge, 0 neither, per axis (x, y, heading; no heading edge when the
+/// window covers every heading).
+std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lattice,
+                                     const SearchWindow& window, const GridGeometry& geometry,
+                                     double res) {
   const double span = 2.0 * window.half_xy / res;  // the unclipped window, in cells
   const Pose2 prior = geometry.to_grid_frame(window.center);
   const int cx = static_cast<int>(std::floor(prior.x / res));
   const int cy = static_cast<int>(std::floor(prior.y / res));
   const int n = static_cast<int>(std::lround(span / 2.0));
-  const bool x_edge = (best.ix == lattice.x0 && lattice.x0 == cx - n) ||
-                      (best.ix == lattice.x1 && lattice.x1 == cx + n);
-  const bool y_edge = (best.iy == lattice.y0 && lattice.y0 == cy - n) ||
-                      (best.iy == lattice.y1 && lattice.y1 == cy + n);
+  const auto side = [](bool low, bool high) { return low ? -1 : high ? 1 : 0; };
   const bool all_headings = lattice.headings * window.step_theta >= 2.0 * std::numbers::pi;
-  const bool t_edge = !all_headings && (best.it == 0 || best.it == lattice.headings - 1);
-  return x_edge || y_edge || t_edge;
+  return {side(best.ix == lattice.x0 && lattice.x0 == cx - n,
+               best.ix == lattice.x1 && lattice.x1 == cx + n),
+          side(best.iy == lattice.y0 && lattice.y0 == cy - n,
+               best.iy == lattice.y1 && lattice.y1 == cy + n),
+          all_headings ? 0 : side(best.it == 0, best.it == lattice.headings - 1)};
+}
+
+/// Estimate::rises_past_window_edge: a lattice pose next to the winner, past an edge of the
+/// window it lies on and still on the map, scores above it.
+bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides) {
+  const LatticePose& best = search.result.best;
+  const PaddedGrid& global = *search.finest().global;
+  for (int dt = -1; dt <= 1; ++dt) {
+    const PlacedLocalGrid placed =
+        place_heading(search.finest(), search.lattice.theta(best.it + dt));
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const bool past = (dx != 0 && dx == sides[0]) || (dy != 0 && dy == sides[1]) ||
+                          (dt != 0 && dt == sides[2]);
+        const int ix = best.ix + dx, iy = best.iy + dy;
+        const bool on_map = ix >= 0 && iy >= 0 && ix < global.width && iy < global.height;
+        if (past && on_map && score(global, placed, ix, iy) > best.score) return true;
+      }
+    }
+  }
+  return false;
 }
 
 /// The best pose of `seen` outside every zone of `exclude` (ties to the lowest index), if any.
@@ -393,7 +417,10 @@ Estimate CorrelationEstimator::conclude(PreparedSearch& prepared, const Observat
                     ? std::numeric_limits<double>::quiet_NaN()
                     : reading_agreement(map_, ring_of(observation), observation.ranges,
                                         observation.rejected, e.pose);
-  e.on_window_edge = on_window_edge(best, lattice, window, map_.geometry, options_.resolution);
+  const std::array<int, 3> sides =
+      window_edge_sides(best, lattice, window, map_.geometry, options_.resolution);
+  e.on_window_edge = sides != std::array<int, 3>{0, 0, 0};
+  e.rises_past_window_edge = e.on_window_edge && rises_past_edge(search, sides);
   // The winning heading's local grid: the most any pose could score.
   const double mass =
       search.finest().make_local(lattice.theta(best.it), Eigen::Vector2d::Zero()).mass();

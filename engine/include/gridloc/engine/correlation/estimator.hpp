@@ -29,6 +29,10 @@ struct VerdictOptions {
   double ambiguity_theta = 0.5235987756;  ///< ... or turned more than this (rad, 30 deg)
   double distinct_scale = 0.01;           ///< d0 of distinctness d / (d + d0)
   double spread_scale_m = 0.5;            ///< s0 of sharpness exp(-spread / s0)
+  /// A winner whose score still rises past the window's edge (Estimate::
+  /// rises_past_window_edge: the truth is likely outside the window, a wrong prior) is at
+  /// most `not localized`.
+  bool rising_edge_not_localized = true;
 };
 
 struct CorrelationOptions {
