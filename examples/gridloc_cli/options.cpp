@@ -162,6 +162,10 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "a scan's refined pose reports this share of the lattice's quantization "
                   "variance (1 = all of it, as before); no verdict changes with it")
       ->capture_default_str();
+  cmd->add_option("--ring-quantization-share", ring_quantization_share,
+                  "a sonar ring's refined pose reports this share of the lattice's "
+                  "quantization variance (1 = all of it); no verdict changes with it")
+      ->capture_default_str();
   cmd->add_option("--covariance-peaks", covariance_peaks,
                   "true: the reported covariance also spans the window's other peaks "
                   "(alternatives) weighted at its temperature, as a corridor's doors make them; "
@@ -211,6 +215,7 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.covariance_temperature = covariance_temperature;
   options.ring_covariance_temperature = ring_covariance_temperature;
   options.scan_quantization_share = scan_quantization_share;
+  options.ring_quantization_share = ring_quantization_share;
   options.covariance_spans_peaks = covariance_peaks;
   options.verdict.rising_edge_not_localized = rising_edge_check;
   // Checked whatever the model: a bad number is a mistake even where it is not used.

@@ -49,6 +49,7 @@ struct SearchArgs {
   double covariance_temperature = CorrelationOptions{}.covariance_temperature;
   double ring_covariance_temperature = CorrelationOptions{}.ring_covariance_temperature;
   double scan_quantization_share = CorrelationOptions{}.scan_quantization_share;
+  double ring_quantization_share = CorrelationOptions{}.ring_quantization_share;
   bool covariance_peaks = CorrelationOptions{}.covariance_spans_peaks;  ///< --covariance-peaks
   bool rising_edge_check = VerdictOptions{}.rising_edge_not_localized;  ///< --rising-edge-check
 

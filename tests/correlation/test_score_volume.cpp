@@ -160,7 +160,8 @@ TEST(PeakCovariance, ARingReportsItsOwnTemperatureAndNoVerdictChanges) {
 
 // A scan's refined pose reports scan_quantization_share of the lattice's quantization
 // variance (step^2 / 12 per axis): the difference from keeping all of it is exactly the rest,
-// and the pose, the spread and the verdict stay; a sonar ring keeps all of it.
+// and the pose, the spread and the verdict stay; a sonar ring keeps all of it unless its
+// own share, ring_quantization_share, says otherwise.
 TEST(PeakCovariance, AScanReportsItsShareOfTheQuantizationVariance) {
   const OccupancyMap map = corridor();
   const Pose2 truth{6.0, 1.04, 0.0};
@@ -196,9 +197,21 @@ TEST(PeakCovariance, AScanReportsItsShareOfTheQuantizationVariance) {
                   .estimate(firing, w)
                   .covariance.isApprox(
                       CorrelationEstimator(map, ring, half).estimate(firing, w).covariance, 1e-12));
+  // ... unless told by its own share, ring_quantization_share, the same way.
+  CorrelationOptions ring_half = half;
+  ring_half.ring_quantization_share = 0.5;
+  const Estimate whole = CorrelationEstimator(map, ring, all).estimate(firing, w);
+  const Estimate shared = CorrelationEstimator(map, ring, ring_half).estimate(firing, w);
+  EXPECT_EQ(whole.pose.x, shared.pose.x);
+  EXPECT_EQ(whole.verdict, shared.verdict);
+  EXPECT_TRUE((whole.covariance - shared.covariance).isApprox(rest, 1e-9))
+      << whole.covariance - shared.covariance;
   for (double bad : {-0.1, 1.5, std::nan("")}) {
     half.scan_quantization_share = bad;
     test::expect_error([&] { CorrelationEstimator(map, ring, half); }, {"scan_quantization_share"});
+    ring_half.ring_quantization_share = bad;
+    test::expect_error([&] { CorrelationEstimator(map, ring, ring_half); },
+                       {"ring_quantization_share"});
   }
 }
 

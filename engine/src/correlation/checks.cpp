@@ -35,6 +35,7 @@ void check(const CorrelationOptions& options) {
       "covariance_temperature", options.covariance_temperature, "must be finite and > 0");
   require_non_negative(options.ring_covariance_temperature, owner, "ring_covariance_temperature");
   require_share(options.scan_quantization_share, owner, "scan_quantization_share");
+  require_share(options.ring_quantization_share, owner, "ring_quantization_share");
   validate(options.scan);
   options.field.validate();
   // The sonar canvas has two cells of margin beyond the ring's reach: a deeper arc draws

@@ -293,8 +293,9 @@ double reported_temperature(const Observation& observation, const CorrelationOpt
 void share_quantization(Eigen::Matrix3d& covariance, const Observation& observation,
                         const Lattice& lattice, const CorrelationOptions& options) {
   const bool ring = !observation.scan && !observation.points;
-  if (ring || !options.refine) return;
-  const double drop = 1.0 - options.scan_quantization_share;
+  if (!options.refine) return;
+  const double drop =
+      1.0 - (ring ? options.ring_quantization_share : options.scan_quantization_share);
   const double res = options.resolution;
   covariance(0, 0) -= drop * res * res / 12.0;  // isotropic in x, y: the map's yaw keeps it
   covariance(1, 1) -= drop * res * res / 12.0;
