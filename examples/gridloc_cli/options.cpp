@@ -172,9 +172,9 @@ void SearchArgs::add_to(CLI::App* cmd) {
                   "no verdict changes with it (default true for relations)")
       ->capture_default_str();
   cmd->add_option("--rising-edge-check", rising_edge_check,
-                  "true: an answer on the window's edge whose score still rises one step past "
-                  "it (JSON rises_past_window_edge: the truth is likely outside the window) is "
-                  "not localized; false: it keeps its verdict")
+                  "true: an answer on the window's edge whose score still rises one and two "
+                  "steps past it (JSON rises_past_window_edge: the truth is likely outside "
+                  "the window) is not localized; false: it keeps its verdict")
       ->capture_default_str();
   cmd->add_flag("--no-second-peak", no_second_peak,
                 "bnb: skip the exact search for the best distinct pose (faster; the "

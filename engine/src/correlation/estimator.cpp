@@ -141,20 +141,28 @@ std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lat
 }
 
 /// Estimate::rises_past_window_edge: a lattice pose next to the winner, past an edge of the
-/// window it lies on and still on the map, scores above it.
+/// window it lies on, and the pose one more step out both score above it (on the map). Two
+/// steps, since the lattice may stop up to half a step short of the window asked for: a truth
+/// in that gap lifts the first step out, not the second.
 bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides) {
   const LatticePose& best = search.result.best;
   const PaddedGrid& global = *search.finest().global;
+  std::array<std::optional<PlacedLocalGrid>, 5> placed;  // heading offsets -2 .. 2
+  const auto above = [&](int dx, int dy, int dt) {
+    const int ix = best.ix + dx, iy = best.iy + dy;
+    if (ix < 0 || iy < 0 || ix >= global.width || iy >= global.height) return false;
+    std::optional<PlacedLocalGrid>& grid = placed[static_cast<std::size_t>(dt + 2)];
+    if (!grid) grid = place_heading(search.finest(), search.lattice.theta(best.it + dt));
+    return score(global, *grid, ix, iy) > best.score;
+  };
   for (int dt = -1; dt <= 1; ++dt) {
-    const PlacedLocalGrid placed =
-        place_heading(search.finest(), search.lattice.theta(best.it + dt));
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
-        const bool past = (dx != 0 && dx == sides[0]) || (dy != 0 && dy == sides[1]) ||
-                          (dt != 0 && dt == sides[2]);
-        const int ix = best.ix + dx, iy = best.iy + dy;
-        const bool on_map = ix >= 0 && iy >= 0 && ix < global.width && iy < global.height;
-        if (past && on_map && score(global, placed, ix, iy) > best.score) return true;
+        const int out_x = dx != 0 && dx == sides[0] ? dx : 0;
+        const int out_y = dy != 0 && dy == sides[1] ? dy : 0;
+        const int out_t = dt != 0 && dt == sides[2] ? dt : 0;
+        if (out_x == 0 && out_y == 0 && out_t == 0) continue;
+        if (above(dx, dy, dt) && above(dx + out_x, dy + out_y, dt + out_t)) return true;
       }
     }
   }

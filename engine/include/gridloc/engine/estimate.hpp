@@ -79,8 +79,8 @@ struct Estimate {
   /// was clipped to the map, nor in heading when the window covers every heading): the
   /// best pose may lie outside the window, a sign of a wrong prior.
   bool on_window_edge = false;
-  /// On the window's edge, and a pose one step past that edge (on the map) scores above the
-  /// winner: the score still rises out of the window, so the best pose lies beyond it.
+  /// On the window's edge, and the poses one and two steps past that edge (on the map) score
+  /// above the winner: the score still rises out of the window, so the best pose lies beyond.
   bool rises_past_window_edge = false;
   /// Sonar ring: the share of readings the known map explains at `pose` (a noise-free
   /// simulated reading within 10 cm + 5 % of the measured one, or both no echo). NaN for
