@@ -42,7 +42,8 @@ struct LocalizeArgs {
   double reported_floor_m = CoarseToFineOptions{}.reported_floor_m;      ///< --reported-floor-m
   double reported_floor_deg = rad2deg(CoarseToFineOptions{}.reported_floor_rad);  ///< ...-deg
   bool no_edge_check = false;  ///< --no-edge-check: ScanChecks::edge_not_localized off
-  bool json = true;            // --json: JSON is the only output, the flag is accepted
+  double close_second_ratio = ScanChecks{}.close_second_ratio;  ///< --close-second-ratio
+  bool json = true;  // --json: JSON is the only output, the flag is accepted
 };
 
 /// The estimator kind of --estimator, checked against --repeat, --scan and --prior;
@@ -72,6 +73,8 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
                "--through-wall-ratio", args.through_wall_ratio,
                "must be finite and >= 0 (0: no check)");
   // Bounded so that their squares stay finite: a floor is centimetres and a degree or two.
+  require_flag(args.close_second_ratio >= 0.0 && args.close_second_ratio <= 1.0,
+               "--close-second-ratio", args.close_second_ratio, "must lie in [0, 1]");
   require_flag(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0, "--reported-floor-m",
                args.reported_floor_m, "must lie in [0, 100] m");
   require_flag(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0,
@@ -245,6 +248,8 @@ void run(const LocalizeArgs& args) {
     ScanChecks checks;
     checks.through_wall_ratio = args.through_wall_ratio;
     checks.edge_not_localized = !args.no_edge_check;
+    // A window's second place nearly as good (whole-map answers have issue 35's rules).
+    checks.close_second_ratio = args.inputs.whole_map ? 0.0 : args.close_second_ratio;
     check_scan_answer(result.estimate, correlation->map(), *localization.observation.scan, checks);
     add_reported_floor(result.estimate, args.reported_floor_m, deg2rad(args.reported_floor_deg));
   }
@@ -291,6 +296,11 @@ void add_localize(CLI::App& app) {
   cmd->add_flag("--no-edge-check", args->no_edge_check,
                 "with --scan and --prior: an answer whose winner lies on the window's edge "
                 "(JSON on_window_edge) stays localized (by default it is not localized)");
+  cmd->add_option("--close-second-ratio", args->close_second_ratio,
+                  "with --scan and --prior: an answer with a second place farther than 0.3 m "
+                  "scoring this share of it, some returns through walls (2 %) and confidence "
+                  "below 0.5 is ambiguous (a corridor's repeating doors); 0: no check")
+      ->capture_default_str();
   cmd->add_option("--reported-floor-m", args->reported_floor_m,
                   "with --scan (the correlation search): added to the reported position "
                   "standard deviations in quadrature (a real map's error; 0 with "

@@ -109,6 +109,7 @@ ScanChecks scan_checks(const CoarseToFineOptions& options) {
   checks.through_wall_ratio = options.through_wall_ratio;
   checks.through_wall_margin_m = options.through_wall_margin_m;
   checks.edge_not_localized = false;
+  checks.close_second_ratio = 0.0;  // whole-map answers: issue 35's rules
   return checks;
 }
 
