@@ -92,6 +92,30 @@ TEST(PeakCovariance, LargerAlongACorridorThanAcrossIt) {
   }
 }
 
+// Issue 19: where the corridor ends in a wall (a corner each side) the same ring is pinned
+// along it too: the covariance along shrinks to within a few times the one across, far below
+// the open corridor's.
+TEST(PeakCovariance, ACorridorsEndPinsItAlongToo) {
+  const OccupancyMap open = corridor();
+  OccupancyMap closed = open;
+  for (int iy = 3; iy <= 36; ++iy) {
+    for (int ix : {150, 151}) closed.at(ix, iy) = CellState::Occupied;
+  }
+  const SonarRing ring = load_sonar_ring(test::ring_path());
+  const Pose2 truth{6.9, 1.04, 0.0};  // the end wall 0.6 m ahead
+  SearchWindow w;
+  w.center = {6.95, 1.05, 0.05};
+  const Estimate along =
+      CorrelationEstimator(open, ring).estimate(Observation{simulate_sonar(open, ring, truth)}, w);
+  const Estimate pinned = CorrelationEstimator(closed, ring)
+                              .estimate(Observation{simulate_sonar(closed, ring, truth)}, w);
+  const Eigen::Matrix3d& c = pinned.covariance;
+  EXPECT_LT(c(0, 0), 4.0 * c(1, 1)) << c;
+  EXPECT_LT(c(0, 0), 0.25 * along.covariance(0, 0)) << c << "\n" << along.covariance;
+  EXPECT_NEAR(pinned.pose.x, truth.x, 0.1);
+  EXPECT_NEAR(pinned.pose.y, truth.y, 0.1);
+}
+
 TEST(PeakCovariance, ATemperatureAboveOneCountsTheNeighboursBelowTheBest) {
   const OccupancyMap map = corridor();
   const SonarRing ring = load_sonar_ring(test::ring_path());
