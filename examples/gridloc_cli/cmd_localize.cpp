@@ -72,9 +72,9 @@ EstimatorKind checked_kind(const LocalizeArgs& args) {
   require_flag(args.through_wall_ratio >= 0.0 && std::isfinite(args.through_wall_ratio),
                "--through-wall-ratio", args.through_wall_ratio,
                "must be finite and >= 0 (0: no check)");
-  // Bounded so that their squares stay finite: a floor is centimetres and a degree or two.
   require_flag(args.close_second_ratio >= 0.0 && args.close_second_ratio <= 1.0,
                "--close-second-ratio", args.close_second_ratio, "must lie in [0, 1]");
+  // Bounded so that their squares stay finite: a floor is centimetres and a degree or two.
   require_flag(args.reported_floor_m >= 0.0 && args.reported_floor_m <= 100.0, "--reported-floor-m",
                args.reported_floor_m, "must lie in [0, 100] m");
   require_flag(args.reported_floor_deg >= 0.0 && args.reported_floor_deg <= 180.0,
@@ -299,7 +299,8 @@ void add_localize(CLI::App& app) {
   cmd->add_option("--close-second-ratio", args->close_second_ratio,
                   "with --scan and --prior: an answer with a second place farther than 0.3 m "
                   "scoring this share of it, some returns through walls (2 %) and confidence "
-                  "below 0.5 is ambiguous (a corridor's repeating doors); 0: no check")
+                  "below 0.5 is ambiguous (a corridor's repeating doors); 0: no check (nor "
+                  "with --through-wall-ratio 0)")
       ->capture_default_str();
   cmd->add_option("--reported-floor-m", args->reported_floor_m,
                   "with --scan (the correlation search): added to the reported position "

@@ -115,6 +115,12 @@ TEST(ScanChecks, ASecondPlaceNearlyAsGoodMakesAnUncleanAnswerAmbiguous) {
   Estimate unchecked = answer(0.3, 90.0, 3.0);
   check_scan_answer(unchecked, room(), centre_scan(), off);
   EXPECT_EQ(unchecked.verdict, Verdict::Localized);
+  // It reads the wall check's share: without the wall check it never fires.
+  ScanChecks no_walls;
+  no_walls.through_wall_ratio = 0.0;
+  Estimate unread = answer(0.3, 90.0, 3.0);
+  check_scan_answer(unread, room(), centre_scan(), no_walls);
+  EXPECT_EQ(unread.verdict, Verdict::Localized);
 }
 
 TEST(ScanChecks, BadChecksAreNamed) {

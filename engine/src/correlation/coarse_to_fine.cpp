@@ -73,12 +73,16 @@ bool on_a_ridge(const Estimate& e, const VerdictOptions& verdict, double ridge_r
 
 /// The best refined place with the others as its hypotheses (distinct ones, best first, up to
 /// options.hypotheses), its second score and verdict as the exact search would give them, but
-/// for the ratios of `c2f` (CoarseToFineOptions::ambiguity_ratio, ridge_ratio).
-Estimate best_of(std::vector<Estimate> refined, const CorrelationOptions& options,
-                 const CoarseToFineOptions& c2f) {
+/// for the ratios of `c2f` (CoarseToFineOptions::ambiguity_ratio, ridge_ratio). The window
+/// edge flags are the coarse search's (`rough`), over the caller's window: a refinement
+/// window's edges are not the caller's.
+Estimate best_of(std::vector<Estimate> refined, const Estimate& rough,
+                 const CorrelationOptions& options, const CoarseToFineOptions& c2f) {
   std::stable_sort(refined.begin(), refined.end(),
                    [](const Estimate& a, const Estimate& b) { return a.score > b.score; });
   Estimate e = refined.front();
+  e.on_window_edge = rough.on_window_edge;
+  e.rises_past_window_edge = rough.rises_past_window_edge;
   e.alternatives = {{e.lattice_pose, e.score}};
   const auto wanted = static_cast<std::size_t>(std::max(1, options.hypotheses));
   for (std::size_t k = 1; k < refined.size() && e.alternatives.size() < wanted; ++k) {
@@ -179,12 +183,10 @@ Estimate CoarseToFineEstimator::estimate(const Observation& observation,
   }
   SearchStats stats = rough.stats;
   for (const Estimate& r : refined) add_counts(stats, r.stats);
-  Estimate e = best_of(std::move(refined), fine_->options(), options_);
+  Estimate e = best_of(std::move(refined), rough, fine_->options(), options_);
   if (observation.scan)
     check_scan_answer(e, fine_->map(), *observation.scan, scan_checks(options_));
   add_reported_floor(e, options_.reported_floor_m, options_.reported_floor_rad);
-  e.on_window_edge = rough.on_window_edge;
-  e.rises_past_window_edge = rough.rises_past_window_edge;
   e.stats = stats;
   e.stats.levels = 2;
   e.stats.proven_optimal = false;  // the coarse copy chose the places looked at closely

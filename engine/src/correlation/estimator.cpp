@@ -120,9 +120,10 @@ void place_winner(Estimate& e, const WindowSearch& search, const GridGeometry& g
   }
 }
 
-/// The sides of the window `best` lies on, as asked (not where the map clipped it): -1 the
-/// low edge, +1 the high edge, 0 neither, per axis (x, y, heading; no heading edge when the
-/// window covers every heading).
+/// The edges of the window `best` lies on, as asked (not where the map clipped it), per axis
+/// (x, y, heading): kLowEdge, kHighEdge, both (a window one step wide) or 0; no heading edge
+/// when the window covers every heading.
+constexpr int kLowEdge = 1, kHighEdge = 2;
 std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lattice,
                                      const SearchWindow& window, const GridGeometry& geometry,
                                      double res) {
@@ -131,7 +132,9 @@ std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lat
   const int cx = static_cast<int>(std::floor(prior.x / res));
   const int cy = static_cast<int>(std::floor(prior.y / res));
   const int n = static_cast<int>(std::lround(span / 2.0));
-  const auto side = [](bool low, bool high) { return low ? -1 : high ? 1 : 0; };
+  const auto side = [](bool low, bool high) {
+    return (low ? kLowEdge : 0) | (high ? kHighEdge : 0);
+  };
   const bool all_headings = lattice.headings * window.step_theta >= 2.0 * std::numbers::pi;
   return {side(best.ix == lattice.x0 && lattice.x0 == cx - n,
                best.ix == lattice.x1 && lattice.x1 == cx + n),
@@ -140,8 +143,9 @@ std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lat
           all_headings ? 0 : side(best.it == 0, best.it == lattice.headings - 1)};
 }
 
-/// Estimate::rises_past_window_edge: a lattice pose next to the winner, past an edge of the
-/// window it lies on, and the pose one more step out both score above it (on the map). Two
+/// Estimate::rises_past_window_edge: a lattice pose next to the winner (its 26 neighbours,
+/// diagonal ones too) past an edge of the window it lies on, and the pose one more step out
+/// along the axes it crossed, both score above it (on the map). Two
 /// steps, since the lattice may stop up to half a step short of the window asked for: a truth
 /// in that gap lifts the first step out, not the second.
 bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides) {
@@ -158,9 +162,12 @@ bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides
   for (int dt = -1; dt <= 1; ++dt) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
-        const int out_x = dx != 0 && dx == sides[0] ? dx : 0;
-        const int out_y = dy != 0 && dy == sides[1] ? dy : 0;
-        const int out_t = dt != 0 && dt == sides[2] ? dt : 0;
+        // A step out of the window along each axis whose edge the winner lies on, or 0.
+        const auto out = [](int step, int edges) {
+          const bool past = (step < 0 && (edges & kLowEdge)) || (step > 0 && (edges & kHighEdge));
+          return past ? step : 0;
+        };
+        const int out_x = out(dx, sides[0]), out_y = out(dy, sides[1]), out_t = out(dt, sides[2]);
         if (out_x == 0 && out_y == 0 && out_t == 0) continue;
         if (above(dx, dy, dt) && above(dx + out_x, dy + out_y, dt + out_t)) return true;
       }

@@ -26,7 +26,8 @@ struct ScanChecks {
   /// returns cross walls (through_walls >= close_second_through_walls) and its confidence
   /// stays below close_second_confidence, is `ambiguous`: a corridor whose doors repeat along
   /// it fits a slid scan nearly as well (issue 19; fitted on 330 held-out windowed scans,
-  /// checked on 330 more: README). 0 ratio: no check.
+  /// checked on 330 more: README). 0 ratio: no check. It reads through_walls, so it needs the
+  /// wall check (through_wall_ratio > 0): without it no answer is ambiguous by this rule.
   double close_second_ratio = 0.88;
   double close_second_m = 0.3;
   double close_second_through_walls = 0.02;
