@@ -143,11 +143,18 @@ std::array<int, 3> window_edge_sides(const LatticePose& best, const Lattice& lat
           all_headings ? 0 : side(best.it == 0, best.it == lattice.headings - 1)};
 }
 
+/// `step` (-1, 0, +1 along one axis) when it leaves the window through an edge in `edges`
+/// (window_edge_sides), else 0.
+int step_out(int step, int edges) {
+  const bool past = (step < 0 && (edges & kLowEdge)) || (step > 0 && (edges & kHighEdge));
+  return past ? step : 0;
+}
+
 /// Estimate::rises_past_window_edge: a lattice pose next to the winner (its 26 neighbours,
 /// diagonal ones too) past an edge of the window it lies on, and the pose one more step out
-/// along the axes it crossed, both score above it (on the map). Two
-/// steps, since the lattice may stop up to half a step short of the window asked for: a truth
-/// in that gap lifts the first step out, not the second.
+/// along the axes it crossed, both score above it (on the map). Two steps, since the lattice
+/// may stop up to half a step short of the window asked for: a truth in that gap lifts the
+/// first step out, not the second.
 bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides) {
   const LatticePose& best = search.result.best;
   const PaddedGrid& global = *search.finest().global;
@@ -162,12 +169,8 @@ bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides
   for (int dt = -1; dt <= 1; ++dt) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
-        // A step out of the window along each axis whose edge the winner lies on, or 0.
-        const auto out = [](int step, int edges) {
-          const bool past = (step < 0 && (edges & kLowEdge)) || (step > 0 && (edges & kHighEdge));
-          return past ? step : 0;
-        };
-        const int out_x = out(dx, sides[0]), out_y = out(dy, sides[1]), out_t = out(dt, sides[2]);
+        const int out_x = step_out(dx, sides[0]), out_y = step_out(dy, sides[1]),
+                  out_t = step_out(dt, sides[2]);
         if (out_x == 0 && out_y == 0 && out_t == 0) continue;
         if (above(dx, dy, dt) && above(dx + out_x, dy + out_y, dt + out_t)) return true;
       }
