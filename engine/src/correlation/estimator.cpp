@@ -158,13 +158,19 @@ int step_out(int step, int edges) {
 bool rises_past_edge(const WindowSearch& search, const std::array<int, 3>& sides) {
   const LatticePose& best = search.result.best;
   const PaddedGrid& global = *search.finest().global;
-  std::array<std::optional<PlacedLocalGrid>, 5> placed;  // heading offsets -2 .. 2
+  // The lattice's headings reuse the search's grids; those past it are placed here, once.
+  std::array<std::optional<PlacedLocalGrid>, 5> beyond;  // heading offsets -2 .. 2
+  const auto placed_at = [&](int dt) -> const PlacedLocalGrid& {
+    const int it = best.it + dt;
+    if (search.grids && it >= 0 && it < search.lattice.headings) return search.grids->placed(it);
+    std::optional<PlacedLocalGrid>& grid = beyond[static_cast<std::size_t>(dt + 2)];
+    if (!grid) grid = place_heading(search.finest(), search.lattice.theta(it));
+    return *grid;
+  };
   const auto above = [&](int dx, int dy, int dt) {
     const int ix = best.ix + dx, iy = best.iy + dy;
     if (ix < 0 || iy < 0 || ix >= global.width || iy >= global.height) return false;
-    std::optional<PlacedLocalGrid>& grid = placed[static_cast<std::size_t>(dt + 2)];
-    if (!grid) grid = place_heading(search.finest(), search.lattice.theta(best.it + dt));
-    return score(global, *grid, ix, iy) > best.score;
+    return score(global, placed_at(dt), ix, iy) > best.score;
   };
   for (int dt = -1; dt <= 1; ++dt) {
     for (int dy = -1; dy <= 1; ++dy) {
