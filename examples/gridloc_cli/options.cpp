@@ -214,7 +214,11 @@ void SearchArgs::apply(CorrelationOptions& options) const {
   options.covariance_cells = covariance_cells;
   options.covariance_temperature = covariance_temperature;
   options.ring_covariance_temperature = ring_covariance_temperature;
+  require_flag(scan_quantization_share >= 0.0 && scan_quantization_share <= 1.0,
+               "--scan-quantization-share", scan_quantization_share, "must lie in [0, 1]");
   options.scan_quantization_share = scan_quantization_share;
+  require_flag(ring_quantization_share >= 0.0 && ring_quantization_share <= 1.0,
+               "--ring-quantization-share", ring_quantization_share, "must lie in [0, 1]");
   options.ring_quantization_share = ring_quantization_share;
   options.covariance_spans_peaks = covariance_peaks;
   options.verdict.rising_edge_not_localized = rising_edge_check;

@@ -251,6 +251,11 @@ TEST_F(Cli, BadSearchOptionsAreNamed) {
                    "--budget-ms needs --strategy bnb");
   expect_cli_error(run_cli(dir, base + " --scan-model beams"), "--scan-model");
   expect_cli_error(run_cli(dir, base + " --free-samples 0"), "--free-samples");
+  expect_cli_error(run_cli(dir, base + " --ring-quantization-share -1"),
+                   "--ring-quantization-share");
+  expect_cli_error(run_cli(dir, base + " --scan-quantization-share 1.5"),
+                   "--scan-quantization-share");
+  expect_cli_error(run_cli(dir, base + " --rising-edge-check maybe"), "--rising-edge-check");
 }
 
 TEST_F(Cli, ScanModelsAndMultiresReportWhatTheyProve) {
