@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include "gridloc/engine/correlation/row_scores.hpp"
 #include "gridloc/sensors/sonar_sim.hpp"
 
 namespace gridloc {
@@ -68,14 +69,17 @@ std::vector<Eigen::Matrix3d> peak_covariances(const LatticePose& best, const Lat
   const bool round = lattice.headings * std::abs(lattice.step_theta) >= 2.0 * std::numbers::pi;
   const int t0 = round ? best.it - k : std::max(0, best.it - k);
   const int t1 = round ? best.it + k : std::min(lattice.headings - 1, best.it + k);
+  std::vector<double> scores;  // one row's
   for (int t = t0; t <= t1; ++t) {
     const int it = (t % lattice.headings + lattice.headings) % lattice.headings;
     const PlacedLocalGrid placed = placed_at(it);
+    const int x0 = std::max(lattice.x0, best.ix - k), x1 = std::min(lattice.x1, best.ix + k);
     for (int iy = std::max(lattice.y0, best.iy - k); iy <= std::min(lattice.y1, best.iy + k);
          ++iy) {
-      for (int ix = std::max(lattice.x0, best.ix - k); ix <= std::min(lattice.x1, best.ix + k);
-           ++ix) {
-        const double below = std::min(0.0, score(global, placed, ix, iy) - best.score);
+      scores.resize(static_cast<std::size_t>(x1 - x0 + 1));
+      score_row(global, placed, x0, iy, x1 - x0 + 1, scores.data());
+      for (int ix = x0; ix <= x1; ++ix) {
+        const double below = std::min(0.0, scores[static_cast<std::size_t>(ix - x0)] - best.score);
         // Offsets from the winner: metres, metres, radians.
         const Eigen::Vector3d d((ix - best.ix) * res, (iy - best.iy) * res,
                                 (t - best.it) * lattice.step_theta);
