@@ -196,6 +196,43 @@ TEST(SearchBranchAndBound, KeepShareScoresEveryPoseNearTheBestWithTheSameWinner)
   EXPECT_GT(kept, 200);
 }
 
+// keep_outside: the same winner, every pose within the share outside the best's
+// neighbourhood still scored, and fewer poses scored inside it.
+TEST(SearchBranchAndBound, KeepOutsideSkipsOnlyTheBestsNeighbourhood) {
+  std::mt19937 rng(93);
+  int kept = 0;
+  long long scored_without = 0, scored_with = 0;
+  for (int c = 0; c < 200; ++c) {
+    const RandomSearch r = random_search(rng, c);
+    const SearchLevel level = r.level();
+    const SearchResult all = search_exhaustive(r.lattice, level);
+    BranchAndBoundOptions options;
+    options.keep_share = c % 2 == 0 ? 0.8 : 0.5;
+    options.threads = c % 3 == 0 ? 2 : 1;
+    const HeadingGrids grids(r.lattice, level);
+    scored_without += search_branch_and_bound(r.lattice, grids, *r.pyramid, options).poses_scored;
+    options.keep_outside = Exclusion{{}, uniform_real(rng, 0.0, 6.0), uniform_int(rng, 0, 2), 0.0};
+    const SearchResult b = search_branch_and_bound(r.lattice, grids, *r.pyramid, options);
+    scored_with += b.poses_scored;
+    expect_pose(b.best, all.best, std::to_string(c));
+    EXPECT_TRUE(b.proven_optimal) << c;
+    if (all.best.score <= 0.0) continue;
+    Exclusion around_best = *options.keep_outside;
+    around_best.center = all.best;
+    std::set<std::tuple<int, int, int>> scored;
+    for (const LatticePose& p : b.scored) scored.insert({p.ix, p.iy, p.it});
+    for (const LatticePose& p : all.scored) {
+      if (p.score < options.keep_share * all.best.score || around_best.contains(p.ix, p.iy, p.it)) {
+        continue;
+      }
+      EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << c << ": a pose within the share unscored";
+      ++kept;
+    }
+  }
+  EXPECT_GT(kept, 100);
+  EXPECT_LT(scored_with, scored_without);
+}
+
 TEST(SearchBranchAndBound, MinScoreFindsTheBestWhenItReachesItAndOnlyThen) {
   std::mt19937 rng(92);
   int above = 0, below = 0;

@@ -37,6 +37,7 @@ TEST(ResumableBranchAndBound, EqualsTheWholeSearchWhateverTheBudget) {
     BranchAndBoundOptions options;
     options.heading_intervals = c % 2 == 0;
     options.keep_share = c % 4 < 2 ? 0.9 : 1.0;
+    if (c % 8 == 1) options.keep_outside = Exclusion{{}, 2.5, 1, 0.0};
     ResumableBranchAndBound search(s.lat, grids, pyramid, options);
     // Not done before it ran (a lattice too small for bound levels is searched at once).
     if (!search.done()) {
@@ -62,8 +63,11 @@ TEST(ResumableBranchAndBound, EqualsTheWholeSearchWhateverTheBudget) {
     if (options.keep_share >= 1.0 || all.best.score <= 0.0) continue;
     std::set<std::tuple<int, int, int>> scored;
     for (const LatticePose& p : r.scored) scored.insert({p.ix, p.iy, p.it});
+    Exclusion around_best = options.keep_outside.value_or(Exclusion{});
+    around_best.center = all.best;
     for (const LatticePose& p : all.scored) {
       if (p.score < options.keep_share * all.best.score) continue;
+      if (options.keep_outside && around_best.contains(p.ix, p.iy, p.it)) continue;
       EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << s.what << ": a pose within the share";
       ++kept;
     }

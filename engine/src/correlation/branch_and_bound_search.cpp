@@ -30,8 +30,21 @@ SearchResult BranchAndBoundSearch::run() {
   for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run_thread, t);
   run_thread(0);
   for (auto& t : pool) t.join();
+  if (!error_ && !stopped_.load()) search_set_aside();
   if (error_) std::rethrow_exception(error_);
   return finish(stopped_.load());
+}
+
+void BranchAndBoundSearch::search_set_aside() {
+  if (!options_.keep_outside || !found_) return;
+  best_is_final_ = true;
+  std::vector<Node>& heap = heaps_[0];
+  for (const Node& node : set_aside_) {
+    if (keeps(node, best_.score) && !within_best_neighbourhood(node)) heap.push_back(node);
+  }
+  set_aside_.clear();
+  std::make_heap(heap.begin(), heap.end(), heap_less);
+  work(0);
 }
 
 void BranchAndBoundSearch::begin() {
@@ -55,6 +68,8 @@ bool BranchAndBoundSearch::advance(long long cells) {
   if (error_) std::rethrow_exception(error_);
   if (!stopped_.load()) {
     cells_allowance_ = -1;
+    search_set_aside();
+    if (error_) std::rethrow_exception(error_);
     result_ = finish(false);
     over_ = true;
   }

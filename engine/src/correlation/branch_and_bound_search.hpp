@@ -232,18 +232,24 @@ class BranchAndBoundSearch {
   /// 2^top cells) into heap t; an error stops the search.
   void make_top_nodes(std::size_t t, std::size_t threads, int top, int heading_level);
 
+  /// What becomes of a node: expanded, set aside (set_aside) or dropped.
+  enum class Fate { Expand, SetAside, Drop };
+
   /// Should the node be expanded: could it hold a pose better than the incumbent, or one
-  /// within keep_share of it? Reads the incumbent's score without the lock first: it only
-  /// ever rises, so a stale value never drops a node that could win; only a bound equal to
-  /// it needs the exact test.
-  bool promising_fast(const Node& node) const {
+  /// within keep_share of it (unless set_aside takes it)? Reads the incumbent's score
+  /// without the lock first: it only ever rises, so a stale value never drops a node that
+  /// could win; only a bound equal to it needs the exact test.
+  Fate fate_of(const Node& node) {
     const double incumbent = best_score_.load(std::memory_order_relaxed);
-    if (keeps(node, incumbent)) return true;
-    if (node.bound < incumbent) return false;
-    if (node.bound > incumbent) return true;
-    std::lock_guard<std::mutex> lock(mutex_);
-    return promising(node);
+    if (node.bound > incumbent) return Fate::Expand;
+    if (node.bound == incumbent) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (could_win(node)) return Fate::Expand;
+    }
+    if (!keeps(node, incumbent)) return Fate::Drop;
+    return set_aside(node) ? Fate::SetAside : Fate::Expand;
   }
+  bool promising_fast(const Node& node) { return fate_of(node) == Fate::Expand; }
   /// Exact test, under the lock.
   bool promising(const Node& node) const {
     return could_win(node) || (found_ && keeps(node, best_.score));
@@ -262,6 +268,29 @@ class BranchAndBoundSearch {
     return options_.keep_share < 1.0 && incumbent > 0.0 &&
            node.bound >= options_.keep_share * incumbent;
   }
+  /// A node kept only by keep_share that lies wholly within keep_outside's neighbourhood of
+  /// the incumbent: kept for search_set_aside() (dropped once the best is final).
+  bool set_aside(const Node& node) {
+    if (!options_.keep_outside) return false;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!found_ || !within_best_neighbourhood(node)) return false;
+    if (!best_is_final_) set_aside_.push_back(node);
+    return true;
+  }
+  /// Whether every pose of the node lies in keep_outside's neighbourhood of the incumbent.
+  bool within_best_neighbourhood(const Node& node) const {
+    Exclusion zone = *options_.keep_outside;
+    zone.center = best_;
+    const int last_heading =
+        std::min(node.heading + (1 << node.heading_level) - 1, lattice_.headings - 1);
+    const int side = 1 << node.block_level;
+    return zone.contains_block(node.heading, last_heading, node.x, node.y,
+                               std::min(node.x + side - 1, lattice_.x1),
+                               std::min(node.y + side - 1, lattice_.y1));
+  }
+  /// Once the search is over (the best is final): searches the nodes set aside that do not
+  /// lie wholly within the best pose's neighbourhood, on thread 0.
+  void search_set_aside();
 
   /// Expands `node`: the children of a block above depth_first_level_ go to heap t (best
   /// first over the whole search); those of a smaller one are visited at once, best first,
@@ -316,12 +345,16 @@ class BranchAndBoundSearch {
       const std::size_t v = (t + i) % heaps_.size();
       std::lock_guard<std::mutex> lock(*heap_mutex_[v]);
       std::vector<Node>& heap = heaps_[v];
-      if (heap.empty() || !promising_fast(heap.front())) continue;
-      std::pop_heap(heap.begin(), heap.end(), heap_less);
-      node = heap.back();
-      heap.pop_back();
-      ++active_;
-      return true;
+      while (!heap.empty()) {
+        const Fate fate = fate_of(heap.front());
+        if (fate == Fate::Drop) break;  // none after it bounds more
+        std::pop_heap(heap.begin(), heap.end(), heap_less);
+        node = heap.back();
+        heap.pop_back();
+        if (fate == Fate::SetAside) continue;
+        ++active_;
+        return true;
+      }
     }
     return false;
   }
@@ -372,9 +405,11 @@ class BranchAndBoundSearch {
   std::atomic<int> active_{0};                           ///< nodes being expanded
   std::atomic<int> roots_pending_{0};                    ///< threads still making top nodes
 
-  mutable std::mutex mutex_;  // guards the incumbent, the error and the result
+  mutable std::mutex mutex_;  // guards the incumbent, the error, the result, set_aside_
   LatticePose best_;
   bool found_ = false;
+  std::vector<Node> set_aside_;  ///< see set_aside()
+  bool best_is_final_ = false;   ///< search_set_aside() runs: set-aside nodes are dropped
   std::atomic<double> best_score_{-std::numeric_limits<double>::infinity()};
   std::atomic<bool> stopped_{false};
   std::exception_ptr error_;

@@ -426,7 +426,11 @@ void CorrelationEstimator::prepare(PreparedSearch& prepared, const Observation& 
                   positive_only_);
   prepared.search.emplace(prepared.lattice, prepared.levels, pyramid_);
   if (hypotheses_in_one_pass(options_, hypotheses, observation)) {
+    // The hypotheses after the winner lie outside its neighbourhood: poses within it need
+    // not be kept.
     prepared.search->bnb.keep_share = options_.second_peak_floor;
+    prepared.search->bnb.keep_outside =
+        neighbourhood(LatticePose{}, options_.resolution, prepared.lattice, options_);
   }
 }
 

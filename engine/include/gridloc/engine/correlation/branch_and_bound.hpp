@@ -207,6 +207,13 @@ struct BranchAndBoundOptions {
   /// share of the best (the incumbent only rises: none is dropped). The best pose is the
   /// same; the hypotheses after it come from `scored` in the same pass.
   double keep_share = 1.0;
+  /// With keep_share: the neighbourhood of the best pose (its radii; the centre is ignored)
+  /// whose poses keep_share need not keep. A node kept only by keep_share that lies wholly
+  /// within this neighbourhood of the incumbent is set aside, and once the best pose is
+  /// known only those not wholly within its neighbourhood are searched: `scored` then holds
+  /// every pose scoring keep_share of the best outside that neighbourhood (and the best),
+  /// which is all the hypotheses after the best need when they must lie outside it.
+  std::optional<Exclusion> keep_outside;
   /// Anytime search: stop after about this many milliseconds (0: no limit) and return the
   /// best pose so far, with SearchResult::proven_optimal false when open blocks could still
   /// hold a better one, and SearchResult::upper_bound the most any pose could score.
