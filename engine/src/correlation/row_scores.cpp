@@ -129,7 +129,7 @@ void score_row(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, i
                         local.offset.size(), part, sums);
     // As score(): the exact sum scaled by 2^-shift, then divided by the int8 scale.
     for (int j = 0; j < part; ++j) {
-      out[first + j] = std::ldexp(static_cast<double>(sums[j]), -local.fixed_shift) /
+      out[first + j] = static_cast<double>(sums[j]) * fixed_point_unit(local.fixed_shift) /
                        static_cast<double>(global.int8_scale);
     }
   }

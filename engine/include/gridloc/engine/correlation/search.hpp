@@ -1,6 +1,7 @@
 #pragma once
 /// The correlation search of seed 001 §2 as free functions: score S = sum L * G of a local
 /// grid placed on a global grid, over a lattice of cells x headings.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -115,6 +116,22 @@ struct PlacedLocalGrid {
 /// Fills `fixed` and `fixed_shift` from `value` (see PlacedLocalGrid).
 void set_fixed_point(PlacedLocalGrid& local);
 
+/// 2^-shift for a fixed_shift in [0, 24], exactly: multiplying an integer sum by it is
+/// std::ldexp(sum, -shift) bit for bit (no rounding short of the subnormals), without the
+/// library call a bound would otherwise make.
+inline double fixed_point_unit(int shift) {
+  static constexpr auto kUnits = [] {
+    std::array<double, 25> units{};
+    double unit = 1.0;
+    for (double& u : units) {
+      u = unit;
+      unit *= 0.5;
+    }
+    return units;
+  }();
+  return kUnits[static_cast<std::size_t>(shift)];
+}
+
 PlacedLocalGrid place(const SparseLocalGrid& local, const PaddedGrid& global);
 
 /// place(rasterize_points(points, theta, resolution), global) without the intermediate grid:
@@ -171,10 +188,9 @@ double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
 inline double correlate(const std::int8_t* arc, const std::int8_t* all,
                         const PlacedLocalGrid& local) {
   if (local.fixed_shift < 0) return correlate_scalar(arc, all, local);
-  return std::ldexp(
-      static_cast<double>(correlate_fixed(arc, all, local.offset.data(), local.fixed.data(),
-                                          local.arc_count, local.offset.size())),
-      -local.fixed_shift);
+  return static_cast<double>(correlate_fixed(arc, all, local.offset.data(), local.fixed.data(),
+                                             local.arc_count, local.offset.size())) *
+         fixed_point_unit(local.fixed_shift);
 }
 
 /// Fast score of `local` with the robot on map cell (cx, cy); the cell must lie in the map
