@@ -66,7 +66,7 @@ TEST(RowScores, LanesDoNotOverflowAtTheLimits) {
 // local values with and without a fixed-point form: the same doubles as score().
 TEST(RowScores, ScoreRowEqualsScoreOnEveryGrid) {
   std::mt19937 rng(8);
-  int integer_rows = 0;  // cases on correlate_fixed_row's path
+  int integer_rows = 0, float_rows = 0;  // cases on correlate_fixed_row's path, on float sums
   for (int c = 0; c < 200; ++c) {
     const int w = uniform_int(rng, 1, 50), h = uniform_int(rng, 1, 30);
     const auto kind = static_cast<GridKind>(c % static_cast<int>(GridKind::Count));
@@ -78,6 +78,7 @@ TEST(RowScores, ScoreRowEqualsScoreOnEveryGrid) {
     const int run = uniform_int(rng, 1, w - cx);  // may exceed kRowRun
     std::vector<double> row(static_cast<std::size_t>(run));
     integer_rows += padded.has_int8() && placed.fixed_shift >= 0 ? 1 : 0;
+    float_rows += placed.fixed_shift < 0 && (padded.has_floats() || padded.ternary()) ? 1 : 0;
     score_row(padded, placed, cx, cy, run, row.data());
     for (int j = 0; j < run; ++j) {
       ASSERT_EQ(row[static_cast<std::size_t>(j)], score(padded, placed, cx + j, cy))
@@ -86,6 +87,7 @@ TEST(RowScores, ScoreRowEqualsScoreOnEveryGrid) {
     }
   }
   EXPECT_GE(integer_rows, 40);
+  EXPECT_GE(float_rows, 40);
 }
 
 }  // namespace

@@ -68,6 +68,48 @@ void both_groups(RowSum sum, const std::int8_t* arc, const std::int8_t* all,
   sum(all, offset + arc_count, fixed + arc_count, count - arc_count, run, out);
 }
 
+/// correlate_scalar for `run` translations at once: each pose's two sums take the same
+/// terms in the same order, so each result is correlate_scalar's bit for bit; the grid's
+/// values for the run are contiguous.
+template <typename T>
+void scalar_row(const T* arc, const T* all, const PlacedLocalGrid& local, int run, double* out) {
+  double positive[kRowRun] = {}, negative[kRowRun] = {};
+  const std::size_t n = local.value.size();
+  for (std::size_t k = 0; k < local.arc_count; ++k) {
+    const float v = local.value[k];
+    const T* cells = arc + local.offset[k];
+    for (int j = 0; j < run; ++j)
+      positive[j] += static_cast<double>(v * static_cast<float>(cells[j]));
+  }
+  for (std::size_t k = local.arc_count; k < n; ++k) {
+    const float v = local.value[k];
+    const T* cells = all + local.offset[k];
+    for (int j = 0; j < run; ++j)
+      negative[j] += static_cast<double>(v * static_cast<float>(cells[j]));
+  }
+  for (int j = 0; j < run; ++j) out[j] = positive[j] + negative[j];
+}
+
+/// score_row's float sums, kRowRun at a time from `origin` (the row's first cell): the
+/// float grid when kept, else its exact int8 copy; false for a decoded int8 grid.
+bool float_row(const PaddedGrid& global, const PlacedLocalGrid& local, std::ptrdiff_t origin,
+               int run, double* out) {
+  for (int first = 0; first < run; first += kRowRun) {
+    const int part = std::min(kRowRun, run - first);
+    const std::ptrdiff_t at = origin + first;
+    if (global.has_floats()) {
+      scalar_row(global.arc_view().data() + at, global.grid.cells.data() + at, local, part,
+                 out + first);
+    } else if (global.int8_scale == 1.0f) {
+      scalar_row(global.arc_view8().data() + at, global.grid8.data() + at, local, part,
+                 out + first);
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool use_avx512_rows() {
   static const bool use =
       avx512_row_available() && std::string_view(fixed_kernel_name()) == "avx512";
@@ -115,11 +157,12 @@ void correlate_fixed_row(const std::int8_t* arc, const std::int8_t* all, const s
 
 void score_row(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy, int run,
                double* out) {
+  const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width();
   if (!(global.has_int8() && local.fixed_shift >= 0)) {
+    if (float_row(global, local, row + cx + global.pad, run, out)) return;
     for (int j = 0; j < run; ++j) out[j] = score(global, local, cx + j, cy);
     return;
   }
-  const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(cy + global.pad) * global.grid.width();
   std::int64_t sums[kRowRun];
   for (int first = 0; first < run; first += kRowRun) {
     const int part = std::min(kRowRun, run - first);

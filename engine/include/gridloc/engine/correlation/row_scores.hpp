@@ -38,7 +38,8 @@ void correlate_fixed_row(const std::int8_t* arc, const std::int8_t* all, const s
 
 /// out[j] = score(global, local, cx + j, cy) for j in [0, run), run >= 1; every cell must
 /// lie in the map (as for score()). Integer path: correlate_fixed_row, kRowRun at a time;
-/// any other grid: score() per pose.
+/// float values (a sonar cone's) on floats or an exact int8 copy: correlate_scalar's sums
+/// for kRowRun poses at once; a decoded int8 grid: score() per pose.
 void score_row(const PaddedGrid& global, const PlacedLocalGrid& local, int cx, int cy, int run,
                double* out);
 
