@@ -109,6 +109,35 @@ TEST(FixedPointKernel, IntegerPathEqualsFloatCorrelation) {
   }
 }
 
+// A sonar cone's 1/n values have no fixed form but sum exactly in double on -1/0/1 cells:
+// the four-sum loop gives correlate_scalar's result bit for bit.
+TEST(FixedPointKernel, OrderFreeSumsEqualTheOrderedLoop) {
+  std::mt19937 rng(12);
+  int order_free = 0;
+  for (int k = 0; k < 300; ++k) {
+    Case c = random_case(rng, 5000, 1, 1);
+    for (float& v : c.local.value) {  // +-1/n, and sums of two as overlapping cones make
+      v = (uniform_int(rng, 0, 1) == 0 ? 1.0f : -1.0f) /
+          static_cast<float>(uniform_int(rng, 1, 400));
+      if (uniform_int(rng, 0, 3) == 0) v += 1.0f / static_cast<float>(uniform_int(rng, 1, 400));
+    }
+    set_fixed_point(c.local);
+    if (!c.local.order_free) continue;
+    ++order_free;
+    const std::int8_t* arc = c.arc.data() + c.origin;
+    const std::int8_t* all = c.all.data() + c.origin;
+    EXPECT_EQ(correlate_scalar_unordered(arc, all, c.local), correlate_scalar(arc, all, c.local))
+        << "case " << k;
+    EXPECT_EQ(correlate(arc, all, c.local), correlate_scalar(arc, all, c.local)) << "case " << k;
+  }
+  EXPECT_GT(order_free, 200);
+  // Values far apart in magnitude would need more than 53 bits: the ordered loop stays.
+  PlacedLocalGrid wide_apart;
+  wide_apart.value = {1.0e12f, 1.0f / 3.0f};  // 2^40 and a 2^-25 bit: 65 bits
+  set_fixed_point(wide_apart);
+  EXPECT_FALSE(wide_apart.order_free);
+}
+
 TEST(FixedPointKernel, ValuesWithoutAFixedPointFormKeepTheFloatPath) {
   PlacedLocalGrid p;
   p.value = {1.0f, -1.0f / 3.0f};  // a third has no binary fraction

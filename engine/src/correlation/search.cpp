@@ -53,11 +53,23 @@ int fraction_bits(float v) {
   return std::max(0, 24 - exponent - std::countr_zero(m));
 }
 
+/// PlacedLocalGrid::order_free for values needing `shift` fractional bits: their
+/// magnitudes sum below 2^53 after the shift (checked against 2^52: the double sum's own
+/// rounding, below n * 2^-53 of it, stays far inside the factor 2).
+bool sums_order_free(const std::vector<float>& values, int shift) {
+  constexpr int kMaxShift = 1000;  // fraction_bits' answer for NaN and infinities
+  if (shift >= kMaxShift) return false;
+  double magnitude = 0.0;
+  for (float v : values) magnitude += std::abs(static_cast<double>(v));
+  return std::ldexp(magnitude, shift) < 0x1p52;
+}
+
 }  // namespace
 
 void set_fixed_point(PlacedLocalGrid& local) {
   local.fixed.clear();
   local.fixed_shift = -1;
+  local.order_free = false;
   // The fewest fractional bits that make every value whole (then multiplying by 2^shift is
   // exact), and the magnitude limit 2^15.
   constexpr int kMaxShift = 24;
@@ -71,7 +83,10 @@ void set_fixed_point(PlacedLocalGrid& local) {
     shift = std::max(shift, fraction_bits(v));
     largest = std::max(largest, std::abs(v));
   }
-  if (shift > kMaxShift || std::ldexp(static_cast<double>(largest), shift) > kLimit) return;
+  if (shift > kMaxShift || std::ldexp(static_cast<double>(largest), shift) > kLimit) {
+    local.order_free = sums_order_free(local.value, shift);
+    return;
+  }
   local.fixed_shift = shift;
   // In float: a power of 2 times a value <= 2^15 is exact, and the loop vectorizes.
   const float scale = std::ldexp(1.0f, shift);

@@ -111,6 +111,11 @@ struct PlacedLocalGrid {
   std::size_t arc_count = 0;
   std::vector<std::int32_t> fixed;
   int fixed_shift = -1;
+  /// Values without a `fixed` form (a sonar cone's 1/n) that are whole multiples of one
+  /// power of two, their magnitudes summing below 2^53 of it: every partial sum of their
+  /// products with -1/0/1 cells is then a double without rounding, so correlate_scalar's
+  /// sums come out the same bit for bit in any order (correlate_scalar_unordered).
+  bool order_free = false;
 };
 
 /// Fills `fixed` and `fixed_shift` from `value` (see PlacedLocalGrid).
@@ -160,6 +165,28 @@ double correlate_scalar(const T* arc, const T* all, const PlacedLocalGrid& local
   return positive + negative;
 }
 
+/// correlate_scalar's result for a local grid whose sums are order_free on -1/0/1 cells,
+/// from four running sums a group instead of one (no chain of dependent additions): every
+/// partial sum is exact, so the result is the same bit for bit.
+template <typename T>
+double correlate_scalar_unordered(const T* arc, const T* all, const PlacedLocalGrid& local) {
+  auto group = [&local](const T* grid, std::size_t begin, std::size_t end) {
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
+    std::size_t k = begin;
+    for (; k + 4 <= end; k += 4) {
+      for (std::size_t lane = 0; lane < 4; ++lane) {
+        sums[lane] += static_cast<double>(local.value[k + lane] *
+                                          static_cast<float>(grid[local.offset[k + lane]]));
+      }
+    }
+    for (; k < end; ++k) {
+      sums[0] += static_cast<double>(local.value[k] * static_cast<float>(grid[local.offset[k]]));
+    }
+    return (sums[0] + sums[1]) + (sums[2] + sums[3]);
+  };
+  return group(arc, 0, local.arc_count) + group(all, local.arc_count, local.value.size());
+}
+
 /// correlate_scalar over int8 cells standing for v / scale: each term reads the float the
 /// cell stands for (PaddedGrid::decode), so the sums are those of the float grid, bit for bit.
 inline double correlate_scalar_decoded(const std::int8_t* arc, const std::int8_t* all,
@@ -187,7 +214,10 @@ double correlate(const T* arc, const T* all, const PlacedLocalGrid& local) {
 /// are exact and so equal to correlate_scalar's bit for bit; correlate_scalar otherwise.
 inline double correlate(const std::int8_t* arc, const std::int8_t* all,
                         const PlacedLocalGrid& local) {
-  if (local.fixed_shift < 0) return correlate_scalar(arc, all, local);
+  if (local.fixed_shift < 0) {
+    return local.order_free ? correlate_scalar_unordered(arc, all, local)
+                            : correlate_scalar(arc, all, local);
+  }
   return static_cast<double>(correlate_fixed(arc, all, local.offset.data(), local.fixed.data(),
                                              local.arc_count, local.offset.size())) *
          fixed_point_unit(local.fixed_shift);
@@ -211,7 +241,7 @@ inline double score(const PaddedGrid& global, const PlacedLocalGrid& local, int 
   const std::int8_t* arc = global.arc_view8().data() + origin;
   const std::int8_t* all = global.grid8.data() + origin;
   // A float local grid reads the floats the int8 cells stand for: cast (scale 1) or decoded.
-  if (global.int8_scale == 1.0f) return correlate_scalar(arc, all, local);
+  if (global.int8_scale == 1.0f) return correlate(arc, all, local);
   return correlate_scalar_decoded(arc, all, local, global.int8_scale);
 }
 
