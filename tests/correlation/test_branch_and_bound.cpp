@@ -167,9 +167,31 @@ RandomSearch random_search(std::mt19937& rng, int c) {
   return r;
 }
 
-TEST(SearchBranchAndBound, KeepShareScoresEveryPoseNearTheBestWithTheSameWinner) {
-  std::mt19937 rng(91);
+/// Expects every pose of the exhaustive search `all` that scores options.keep_share of its
+/// best (and lies outside options.keep_outside's neighbourhood of it) among b's scored
+/// poses; returns how many there were.
+int expect_share_scored(const SearchResult& b, const SearchResult& all,
+                        const BranchAndBoundOptions& options, int c) {
+  Exclusion around_best = options.keep_outside.value_or(Exclusion{});
+  around_best.center = all.best;
+  std::set<std::tuple<int, int, int>> scored;
+  for (const LatticePose& p : b.scored) scored.insert({p.ix, p.iy, p.it});
   int kept = 0;
+  for (const LatticePose& p : all.scored) {
+    if (p.score < options.keep_share * all.best.score) continue;
+    if (options.keep_outside && around_best.contains(p.ix, p.iy, p.it)) continue;
+    EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << c << ": a pose within the share unscored";
+    ++kept;
+  }
+  return kept;
+}
+
+// keep_share, then with keep_outside too: the same winner, every pose within the share (outside
+// the best's neighbourhood) scored, and fewer poses scored with the neighbourhood skipped.
+TEST(SearchBranchAndBound, KeepShareScoresEveryPoseNearTheBestWithTheSameWinner) {
+  std::mt19937 rng(91), zones(93);
+  int kept = 0, kept_outside = 0;
+  long long scored_without = 0, scored_with = 0;
   for (int c = 0; c < 200; ++c) {
     const RandomSearch r = random_search(rng, c);
     const SearchLevel level = r.level();
@@ -184,52 +206,20 @@ TEST(SearchBranchAndBound, KeepShareScoresEveryPoseNearTheBestWithTheSameWinner)
     EXPECT_EQ(b.best.it, all.best.it) << c;
     EXPECT_EQ(b.best.score, all.best.score) << c;
     EXPECT_TRUE(b.proven_optimal) << c;
+    scored_without += b.poses_scored;
+    BranchAndBoundOptions outside = options;
+    outside.keep_outside =
+        Exclusion{{}, uniform_real(zones, 0.0, 6.0), uniform_int(zones, 0, 2), 0.0};
+    const SearchResult o = search_branch_and_bound(r.lattice, grids, *r.pyramid, outside);
+    scored_with += o.poses_scored;
+    expect_pose(o.best, all.best, std::to_string(c));
+    EXPECT_TRUE(o.proven_optimal) << c;
     if (all.best.score <= 0.0) continue;  // the share of a score <= 0 keeps nothing more
-    std::set<std::tuple<int, int, int>> scored;
-    for (const LatticePose& p : b.scored) scored.insert({p.ix, p.iy, p.it});
-    for (const LatticePose& p : all.scored) {
-      if (p.score < options.keep_share * all.best.score) continue;
-      EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << c << ": a pose within the share unscored";
-      ++kept;
-    }
+    kept += expect_share_scored(b, all, options, c);
+    kept_outside += expect_share_scored(o, all, outside, c);
   }
   EXPECT_GT(kept, 200);
-}
-
-// keep_outside: the same winner, every pose within the share outside the best's
-// neighbourhood still scored, and fewer poses scored inside it.
-TEST(SearchBranchAndBound, KeepOutsideSkipsOnlyTheBestsNeighbourhood) {
-  std::mt19937 rng(93);
-  int kept = 0;
-  long long scored_without = 0, scored_with = 0;
-  for (int c = 0; c < 200; ++c) {
-    const RandomSearch r = random_search(rng, c);
-    const SearchLevel level = r.level();
-    const SearchResult all = search_exhaustive(r.lattice, level);
-    BranchAndBoundOptions options;
-    options.keep_share = c % 2 == 0 ? 0.8 : 0.5;
-    options.threads = c % 3 == 0 ? 2 : 1;
-    const HeadingGrids grids(r.lattice, level);
-    scored_without += search_branch_and_bound(r.lattice, grids, *r.pyramid, options).poses_scored;
-    options.keep_outside = Exclusion{{}, uniform_real(rng, 0.0, 6.0), uniform_int(rng, 0, 2), 0.0};
-    const SearchResult b = search_branch_and_bound(r.lattice, grids, *r.pyramid, options);
-    scored_with += b.poses_scored;
-    expect_pose(b.best, all.best, std::to_string(c));
-    EXPECT_TRUE(b.proven_optimal) << c;
-    if (all.best.score <= 0.0) continue;
-    Exclusion around_best = *options.keep_outside;
-    around_best.center = all.best;
-    std::set<std::tuple<int, int, int>> scored;
-    for (const LatticePose& p : b.scored) scored.insert({p.ix, p.iy, p.it});
-    for (const LatticePose& p : all.scored) {
-      if (p.score < options.keep_share * all.best.score || around_best.contains(p.ix, p.iy, p.it)) {
-        continue;
-      }
-      EXPECT_TRUE(scored.count({p.ix, p.iy, p.it})) << c << ": a pose within the share unscored";
-      ++kept;
-    }
-  }
-  EXPECT_GT(kept, 100);
+  EXPECT_GT(kept_outside, 100);
   EXPECT_LT(scored_with, scored_without);
 }
 
