@@ -214,13 +214,13 @@ class BranchAndBoundSearch {
   }
 
   /// The level of the top nodes' blocks (and the depth-first level below it): on a lattice
-  /// 9 cells or more across, one below the level whose one block covers it. Such a block's
+  /// 17 cells or more across, one below the level whose one block covers it. Such a block's
   /// bound reached the best score at every heading of the apartment's windows (81-167
   /// bounds pruning nothing): starting from 4 blocks a heading was 8-11 % faster there, the
   /// same on the whole map (bench/RESULTS.md). A smaller lattice keeps its one block.
   int top_level() {
     const int whole = bound_depth_for(lattice_);
-    const int top = std::min(pyramid_.depth(), whole >= 4 ? whole - 1 : whole);
+    const int top = std::min(pyramid_.depth(), whole >= 5 ? whole - 1 : whole);
     depth_first_level_ = std::min(kDepthFirstLevel, top - kBestFirstLevels);
     return top;
   }
