@@ -11,6 +11,7 @@
 
 #include "correlation/search_cases.hpp"
 #include "gridloc/engine/correlation/fixed_point_kernel.hpp"
+#include "gridloc/grids/error.hpp"
 #include "random_cases.hpp"
 
 namespace gridloc {
@@ -60,6 +61,21 @@ TEST(RowScores, LanesDoNotOverflowAtTheLimits) {
   correlate_fixed_row(grid.data(), grid.data(), offset.data(), fixed.data(), 7000, 20000, kRowRun,
                       out);
   for (int j = 0; j < kRowRun; ++j) EXPECT_EQ(out[j], expected) << "pose " << j;
+}
+
+TEST(RowScores, ARunOutsideTheLanesIsAnError) {
+  std::vector<std::int8_t> grid(2 * kRowRun, 1);
+  const std::vector<std::int32_t> offset(3, 0), fixed(3, 1);
+  std::int64_t out[kRowRun];
+  for (int run : {0, -1, kRowRun + 1}) {
+    try {
+      correlate_fixed_row(grid.data(), grid.data(), offset.data(), fixed.data(), 1, 3, run, out);
+      ADD_FAILURE() << "run " << run << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("a run of " + std::to_string(run)), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 // Every grid kind (int8 ternary grids, floats, a likelihood field's scaled int8 cells) and

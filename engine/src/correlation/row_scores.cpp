@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <string_view>
 
 #include "gridloc/engine/correlation/fixed_point_kernel.hpp"
+#include "gridloc/grids/error.hpp"
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -60,9 +62,14 @@ using RowSum = void (*)(const std::int8_t*, const std::int32_t*, const std::int3
                         int, std::int64_t*);
 
 /// Both groups of cells (arc cells read `arc`, the others `all`) into out, zeroed first.
+/// A run outside [1, kRowRun] is an error (the lanes and `out` hold kRowRun).
 void both_groups(RowSum sum, const std::int8_t* arc, const std::int8_t* all,
                  const std::int32_t* offset, const std::int32_t* fixed, std::size_t arc_count,
                  std::size_t count, int run, std::int64_t* out) {
+  if (run < 1 || run > kRowRun) {
+    throw Error("row scores: a run of " + std::to_string(run) + " translations must lie in [1, " +
+                std::to_string(kRowRun) + "]");
+  }
   std::fill(out, out + run, std::int64_t{0});
   sum(arc, offset, fixed, arc_count, run, out);
   sum(all, offset + arc_count, fixed + arc_count, count - arc_count, run, out);

@@ -14,7 +14,8 @@ namespace gridloc {
 inline constexpr int kRowRun = 16;
 
 /// out[j] = correlate_fixed_scalar(arc + j, all + j, ...) for j in [0, run), run in
-/// [1, kRowRun]: the plain loop, the reference.
+/// [1, kRowRun] (gridloc::Error otherwise, for every row function): the plain loop, the
+/// reference.
 void correlate_fixed_row_scalar(const std::int8_t* arc, const std::int8_t* all,
                                 const std::int32_t* offset, const std::int32_t* fixed,
                                 std::size_t arc_count, std::size_t count, int run,
